@@ -1,0 +1,12 @@
+#pragma once
+/// \file
+/// Module umbrella: vectors, boxes, errors, results, spans and threading.
+
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
+#include "ebgeom/core/error.hpp"
+#include "ebgeom/core/parallel.hpp"
+#include "ebgeom/core/result.hpp"
+#include "ebgeom/core/span.hpp"
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/sdf/concepts.hpp"

@@ -1,0 +1,43 @@
+#pragma once
+/// \file
+/// Compile-time configuration shared by every ebgeom header: version, inlining and assertion
+/// macros. Nothing here changes a type's layout.
+
+#include <cstdio>
+#include <cstdlib>
+
+#define EBGEOM_VERSION_MAJOR 0
+#define EBGEOM_VERSION_MINOR 1
+#define EBGEOM_VERSION_PATCH 0
+
+#if defined(__GNUC__) || defined(__clang__)
+#define EBGEOM_FORCE_INLINE inline __attribute__((always_inline))
+#define EBGEOM_LIKELY(x) __builtin_expect(!!(x), 1)
+#define EBGEOM_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#define EBGEOM_RESTRICT __restrict__
+#elif defined(_MSC_VER)
+#define EBGEOM_FORCE_INLINE __forceinline
+#define EBGEOM_LIKELY(x) (x)
+#define EBGEOM_UNLIKELY(x) (x)
+#define EBGEOM_RESTRICT __restrict
+#else
+#define EBGEOM_FORCE_INLINE inline
+#define EBGEOM_LIKELY(x) (x)
+#define EBGEOM_UNLIKELY(x) (x)
+#define EBGEOM_RESTRICT
+#endif
+
+/// Internal invariants only (never user data). On when EBGEOM_ENABLE_ASSERTS is defined, which our
+/// Debug, test and fuzz builds do; users get it with -DEBGEOM_ENABLE_ASSERTS.
+#if defined(EBGEOM_ENABLE_ASSERTS)
+#define EBGEOM_ASSERT(cond)                                                                        \
+  do {                                                                                             \
+    if (!(cond)) {                                                                                 \
+      std::fprintf(stderr, "%s:%d: ebgeom internal assertion failed: %s\n", __FILE__, __LINE__,    \
+                   #cond);                                                                         \
+      std::abort();                                                                                \
+    }                                                                                              \
+  } while (0)
+#else
+#define EBGEOM_ASSERT(cond) ((void)0)
+#endif

@@ -1,0 +1,5 @@
+#pragma once
+/// \file
+/// Umbrella header: includes every public module. Users may include finer headers instead.
+
+#include "ebgeom/core.hpp"
