@@ -17,10 +17,7 @@ namespace ebgeom::test {
 using FloatTypes = ::testing::Types<float, double>;
 
 /// Tolerance scaled to the precision: about 1e-4 for float, 1e-10 for double.
-template <class T>
-constexpr T tol() {
-  return sizeof(T) == 4 ? T(1e-4) : T(1e-10);
-}
+template <class T> constexpr T tol() { return sizeof(T) == 4 ? T(1e-4) : T(1e-10); }
 
 /// Deterministic uniform points in `box`.
 template <class T>
@@ -36,8 +33,7 @@ std::vector<Vec3<T>> random_points(const Aabb<T>& box, std::size_t n, std::uint6
 }
 
 /// Deterministic random unit vector stream.
-template <class T>
-Vec3<T> random_unit(std::mt19937_64& rng) {
+template <class T> Vec3<T> random_unit(std::mt19937_64& rng) {
   std::normal_distribution<double> g(0.0, 1.0);
   for (;;) {
     const Vec3<double> v{g(rng), g(rng), g(rng)};
@@ -53,12 +49,12 @@ inline std::string mesh_path(const std::string& name) {
 
 inline bool file_exists(const std::string& path) { return std::ifstream(path).good(); }
 
-}  // namespace ebgeom::test
+} // namespace ebgeom::test
 
 /// Skips the current test, saying why, when a shared mesh is not present.
 #define EBGEOM_REQUIRE_MESH(name)                                                                  \
   do {                                                                                             \
-    if (!::ebgeom::test::file_exists(::ebgeom::test::mesh_path(name)))                            \
+    if (!::ebgeom::test::file_exists(::ebgeom::test::mesh_path(name)))                             \
       GTEST_SKIP() << "shared mesh " << ::ebgeom::test::mesh_path(name)                            \
                    << " is absent (tests read ../shared/meshes when it exists)";                   \
   } while (0)

@@ -16,8 +16,8 @@ struct DemoScene {
   static constexpr ebgeom::SdfKind kind = ebgeom::SdfKind::bound;
   double operator()(const ebgeom::Vec3<double>& p) const noexcept {
     const double sphere = ebgeom::norm(p) - 1.0;
-    const ebgeom::Vec3<double> q = ebgeom::abs(p - ebgeom::Vec3<double>{0.6, 0.6, 0.6}) -
-                                   ebgeom::Vec3<double>::constant(0.5);
+    const ebgeom::Vec3<double> q =
+        ebgeom::abs(p - ebgeom::Vec3<double>{0.6, 0.6, 0.6}) - ebgeom::Vec3<double>::constant(0.5);
     const double box = ebgeom::norm(ebgeom::max(q, ebgeom::Vec3<double>::zero())) +
                        std::min(ebgeom::max_component(q), 0.0);
     return std::max(sphere, -box);
@@ -56,13 +56,14 @@ int run_demo(int res) {
   return 0;
 }
 
-}  // namespace
+} // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"ebgeom: fast exact signed distance fields"};
   app.require_subcommand(1);
   int res = 64;
-  auto* demo = app.add_subcommand("demo", "Evaluate the built-in scene on a grid and print a summary");
+  auto* demo =
+      app.add_subcommand("demo", "Evaluate the built-in scene on a grid and print a summary");
   demo->add_option("--res", res, "cells per axis")->check(CLI::Range(1, 1024));
   CLI11_PARSE(app, argc, argv);
   if (*demo) return run_demo(res);

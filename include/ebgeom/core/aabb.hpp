@@ -10,8 +10,7 @@ namespace ebgeom {
 
 /// Axis-aligned box [lo, hi]. The default-constructed box is *empty* (lo = +inf, hi = -inf), so
 /// `extend` from it gives the tight box of what was added. 24 B (float), 48 B (double).
-template <class T>
-struct Aabb {
+template <class T> struct Aabb {
   using scalar_type = T;
   Vec3<T> lo{Vec3<T>::constant(std::numeric_limits<T>::infinity())};
   Vec3<T> hi{Vec3<T>::constant(-std::numeric_limits<T>::infinity())};
@@ -27,19 +26,22 @@ struct Aabb {
   }
   /// Tight box of one, two or three points.
   static constexpr Aabb of(const Vec3<T>& a) noexcept { return {a, a}; }
-  static constexpr Aabb of(const Vec3<T>& a, const Vec3<T>& b) noexcept { return {min(a, b), max(a, b)}; }
+  static constexpr Aabb of(const Vec3<T>& a, const Vec3<T>& b) noexcept {
+    return {min(a, b), max(a, b)};
+  }
   static constexpr Aabb of(const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) noexcept {
     return {min(min(a, b), c), max(max(a, b), c)};
   }
   /// Tight box of a range of points (anything iterable yielding `Vec3<T>`).
-  template <class Range>
-  static Aabb of_range(const Range& points) noexcept {
+  template <class Range> static Aabb of_range(const Range& points) noexcept {
     Aabb b;
     for (const auto& p : points) b.extend(p);
     return b;
   }
 
-  constexpr bool is_empty() const noexcept { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
+  constexpr bool is_empty() const noexcept {
+    return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z);
+  }
   constexpr Aabb& extend(const Vec3<T>& p) noexcept {
     lo = min(lo, p);
     hi = max(hi, p);
@@ -53,7 +55,9 @@ struct Aabb {
   /// Enclosing union.
   friend constexpr Aabb merge(const Aabb& a, const Aabb& b) noexcept { return Aabb(a).extend(b); }
   /// Box grown by `r` on every side (shrunk for r < 0).
-  constexpr Aabb grown(T r) const noexcept { return {lo - Vec3<T>::constant(r), hi + Vec3<T>::constant(r)}; }
+  constexpr Aabb grown(T r) const noexcept {
+    return {lo - Vec3<T>::constant(r), hi + Vec3<T>::constant(r)};
+  }
   constexpr Vec3<T> extent() const noexcept { return hi - lo; }
   constexpr Vec3<T> center() const noexcept { return (lo + hi) * T(0.5); }
   constexpr Vec3<T> centroid() const noexcept { return center(); }
@@ -100,11 +104,12 @@ struct Aabb {
     const T dz = std::max(p.z - lo.z, hi.z - p.z);
     return dx * dx + dy * dy + dz * dz;
   }
-  template <class U>
-  static constexpr Aabb from(const Aabb<U>& b) noexcept {
+  template <class U> static constexpr Aabb from(const Aabb<U>& b) noexcept {
     return {Vec3<T>::from(b.lo), Vec3<T>::from(b.hi)};
   }
-  friend constexpr bool operator==(const Aabb& a, const Aabb& b) noexcept { return a.lo == b.lo && a.hi == b.hi; }
+  friend constexpr bool operator==(const Aabb& a, const Aabb& b) noexcept {
+    return a.lo == b.lo && a.hi == b.hi;
+  }
 };
 
-}  // namespace ebgeom
+} // namespace ebgeom

@@ -14,18 +14,18 @@ namespace ebgeom {
 /// What went wrong, coarse enough to branch on. Messages carry the details.
 enum class ErrorCode : std::uint8_t {
   ok = 0,
-  io,               ///< a file could not be opened, read or written
-  empty,            ///< the input holds nothing (empty file, mesh without faces)
-  truncated,        ///< the input ends before what its header or syntax promises
-  bad_magic,        ///< the content is not the format it claims (or no format was recognised)
-  syntax,           ///< a token is not what the grammar expects
-  bad_number,       ///< a number is malformed or out of range for its type
-  non_finite,       ///< NaN or infinity where a finite value is required
-  bad_index,        ///< an index is out of range (vertex index >= vertex count, zero OBJ index, ...)
-  size_mismatch,    ///< declared counts disagree with the data (or exceed a limit)
-  unsupported,      ///< valid input that this library does not handle (e.g. VTK STRUCTURED_POINTS)
-  degenerate,       ///< geometry that cannot be used (zero-area face, fewer than 3 vertices)
-  invalid_mesh,     ///< topology that makes the requested operation undefined
+  io,            ///< a file could not be opened, read or written
+  empty,         ///< the input holds nothing (empty file, mesh without faces)
+  truncated,     ///< the input ends before what its header or syntax promises
+  bad_magic,     ///< the content is not the format it claims (or no format was recognised)
+  syntax,        ///< a token is not what the grammar expects
+  bad_number,    ///< a number is malformed or out of range for its type
+  non_finite,    ///< NaN or infinity where a finite value is required
+  bad_index,     ///< an index is out of range (vertex index >= vertex count, zero OBJ index, ...)
+  size_mismatch, ///< declared counts disagree with the data (or exceed a limit)
+  unsupported,   ///< valid input that this library does not handle (e.g. VTK STRUCTURED_POINTS)
+  degenerate,    ///< geometry that cannot be used (zero-area face, fewer than 3 vertices)
+  invalid_mesh,  ///< topology that makes the requested operation undefined
   invalid_argument, ///< a parameter out of its documented range
   out_of_memory,    ///< a request larger than allowed or available
 };
@@ -33,21 +33,36 @@ enum class ErrorCode : std::uint8_t {
 /// Stable lower-case name of a code, e.g. "truncated".
 inline const char* to_string(ErrorCode c) noexcept {
   switch (c) {
-    case ErrorCode::ok: return "ok";
-    case ErrorCode::io: return "io";
-    case ErrorCode::empty: return "empty";
-    case ErrorCode::truncated: return "truncated";
-    case ErrorCode::bad_magic: return "bad_magic";
-    case ErrorCode::syntax: return "syntax";
-    case ErrorCode::bad_number: return "bad_number";
-    case ErrorCode::non_finite: return "non_finite";
-    case ErrorCode::bad_index: return "bad_index";
-    case ErrorCode::size_mismatch: return "size_mismatch";
-    case ErrorCode::unsupported: return "unsupported";
-    case ErrorCode::degenerate: return "degenerate";
-    case ErrorCode::invalid_mesh: return "invalid_mesh";
-    case ErrorCode::invalid_argument: return "invalid_argument";
-    case ErrorCode::out_of_memory: return "out_of_memory";
+  case ErrorCode::ok:
+    return "ok";
+  case ErrorCode::io:
+    return "io";
+  case ErrorCode::empty:
+    return "empty";
+  case ErrorCode::truncated:
+    return "truncated";
+  case ErrorCode::bad_magic:
+    return "bad_magic";
+  case ErrorCode::syntax:
+    return "syntax";
+  case ErrorCode::bad_number:
+    return "bad_number";
+  case ErrorCode::non_finite:
+    return "non_finite";
+  case ErrorCode::bad_index:
+    return "bad_index";
+  case ErrorCode::size_mismatch:
+    return "size_mismatch";
+  case ErrorCode::unsupported:
+    return "unsupported";
+  case ErrorCode::degenerate:
+    return "degenerate";
+  case ErrorCode::invalid_mesh:
+    return "invalid_mesh";
+  case ErrorCode::invalid_argument:
+    return "invalid_argument";
+  case ErrorCode::out_of_memory:
+    return "out_of_memory";
   }
   return "unknown";
 }
@@ -96,19 +111,17 @@ class Exception : public std::runtime_error {
 };
 
 namespace detail {
-template <class... A>
-std::string concat(const A&... a) {
+template <class... A> std::string concat(const A&... a) {
   std::ostringstream os;
   os.precision(17);
   (os << ... << a);
   return os.str();
 }
-}  // namespace detail
+} // namespace detail
 
 /// Builds an `Error` whose message is the concatenation of `parts`.
-template <class... A>
-Error make_error(ErrorCode code, const A&... parts) {
+template <class... A> Error make_error(ErrorCode code, const A&... parts) {
   return Error{code, detail::concat(parts...)};
 }
 
-}  // namespace ebgeom
+} // namespace ebgeom

@@ -73,4 +73,4 @@ void parallel_for(std::size_t begin, std::size_t end, std::size_t grain, Fn&& fn
 #endif
 }
 
-}  // namespace ebgeom
+} // namespace ebgeom

@@ -13,8 +13,7 @@ namespace ebgeom {
 /// Holds either a `V` or an `E` (`Error` by default; `ParseError` for readers).
 /// `value()` on an error throws `ebgeom::Exception`, so tools may use exceptions while HPC callers
 /// test `has_value()` first. `E` must have `code` and `what()`.
-template <class V, class E = Error>
-class [[nodiscard]] Result {
+template <class V, class E = Error> class [[nodiscard]] Result {
  public:
   using value_type = V;
   using error_type = E;
@@ -22,8 +21,9 @@ class [[nodiscard]] Result {
   Result(V v) : data_(std::in_place_index<0>, std::move(v)) {}
   Result(E e) : data_(std::in_place_index<1>, std::move(e)) {}
   /// Converts from a compatible error type (e.g. ParseError into Error).
-  template <class E2, class = std::enable_if_t<!std::is_same_v<E2, E> && std::is_convertible_v<E2, E> &&
-                                               !std::is_convertible_v<E2, V>>>
+  template <class E2,
+            class = std::enable_if_t<!std::is_same_v<E2, E> && std::is_convertible_v<E2, E> &&
+                                     !std::is_convertible_v<E2, V>>>
   Result(E2 e) : data_(std::in_place_index<1>, E(std::move(e))) {}
 
   bool has_value() const noexcept { return data_.index() == 0; }
@@ -50,8 +50,7 @@ class [[nodiscard]] Result {
   const E& error() const& noexcept { return *std::get_if<1>(&data_); }
   E&& error() && noexcept { return std::move(*std::get_if<1>(&data_)); }
 
-  template <class U>
-  V value_or(U&& fallback) const& {
+  template <class U> V value_or(U&& fallback) const& {
     return has_value() ? std::get<0>(data_) : static_cast<V>(std::forward<U>(fallback));
   }
 
@@ -68,4 +67,4 @@ class [[nodiscard]] Result {
 /// Result of an operation that produces nothing but may fail.
 struct Ok {};
 
-}  // namespace ebgeom
+} // namespace ebgeom

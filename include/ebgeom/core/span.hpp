@@ -13,8 +13,7 @@ namespace ebgeom {
 
 /// Pointer + size. Trivially copyable; never owns. `Span<const T>` converts from vectors, arrays
 /// and `Span<T>`.
-template <class T>
-class Span {
+template <class T> class Span {
  public:
   using element_type = T;
   using value_type = std::remove_cv_t<T>;
@@ -26,14 +25,16 @@ class Span {
   template <class U, class = std::enable_if_t<std::is_convertible_v<U (*)[], T (*)[]>>>
   constexpr Span(const Span<U>& other) noexcept : data_(other.data()), size_(other.size()) {}
   template <class A, class U = T, class = std::enable_if_t<std::is_const_v<U>>>
-  Span(const std::vector<std::remove_const_t<U>, A>& v) noexcept : data_(v.data()), size_(v.size()) {}
+  Span(const std::vector<std::remove_const_t<U>, A>& v) noexcept
+      : data_(v.data()), size_(v.size()) {}
   template <class A>
   Span(std::vector<std::remove_const_t<T>, A>& v) noexcept : data_(v.data()), size_(v.size()) {}
-  template <std::size_t N>
-  constexpr Span(T (&a)[N]) noexcept : data_(a), size_(N) {}
-  template <class U, std::size_t N, class = std::enable_if_t<std::is_convertible_v<U (*)[], T (*)[]>>>
+  template <std::size_t N> constexpr Span(T (&a)[N]) noexcept : data_(a), size_(N) {}
+  template <class U, std::size_t N,
+            class = std::enable_if_t<std::is_convertible_v<U (*)[], T (*)[]>>>
   constexpr Span(std::array<U, N>& a) noexcept : data_(a.data()), size_(N) {}
-  template <class U, std::size_t N, class = std::enable_if_t<std::is_convertible_v<const U (*)[], T (*)[]>>>
+  template <class U, std::size_t N,
+            class = std::enable_if_t<std::is_convertible_v<const U (*)[], T (*)[]>>>
   constexpr Span(const std::array<U, N>& a) noexcept : data_(a.data()), size_(N) {}
 
   constexpr T* data() const noexcept { return data_; }
@@ -59,9 +60,7 @@ class Span {
   std::size_t size_ = 0;
 };
 
-template <class T, class A>
-Span(std::vector<T, A>&) -> Span<T>;
-template <class T, class A>
-Span(const std::vector<T, A>&) -> Span<const T>;
+template <class T, class A> Span(std::vector<T, A>&) -> Span<T>;
+template <class T, class A> Span(const std::vector<T, A>&) -> Span<const T>;
 
-}  // namespace ebgeom
+} // namespace ebgeom

@@ -18,9 +18,9 @@ namespace ebgeom {
 
 /// What the value of an SDF means.
 enum class SdfKind {
-  exact,    ///< the true signed Euclidean distance
-  bound,    ///< 1-Lipschitz with |value| <= true distance and the correct sign: safe to sphere-trace
-  implicit  ///< only the sign is meaningful
+  exact,   ///< the true signed Euclidean distance
+  bound,   ///< 1-Lipschitz with |value| <= true distance and the correct sign: safe to sphere-trace
+  implicit ///< only the sign is meaningful
 };
 
 /// The weaker of two kinds (exact > bound > implicit).
@@ -31,11 +31,9 @@ constexpr SdfKind weakest(SdfKind a, SdfKind b) noexcept {
 }
 
 namespace detail {
-template <class S, class = void>
-struct is_sdf : std::false_type {};
+template <class S, class = void> struct is_sdf : std::false_type {};
 template <class S>
-struct is_sdf<S, std::void_t<typename S::scalar_type,
-                             decltype(S::kind),
+struct is_sdf<S, std::void_t<typename S::scalar_type, decltype(S::kind),
                              decltype(std::declval<const S&>()(
                                  std::declval<const Vec3<typename S::scalar_type>&>())),
                              decltype(std::declval<const S&>().bounds())>>
@@ -45,23 +43,22 @@ struct is_sdf<S, std::void_t<typename S::scalar_type,
           std::is_convertible_v<decltype(std::declval<const S&>()(
                                     std::declval<const Vec3<typename S::scalar_type>&>())),
                                 typename S::scalar_type> &&
-          std::is_same_v<decltype(std::declval<const S&>().bounds()), Aabb<typename S::scalar_type>>> {};
-}  // namespace detail
+          std::is_same_v<decltype(std::declval<const S&>().bounds()),
+                         Aabb<typename S::scalar_type>>> {};
+} // namespace detail
 
 /// True when `S` satisfies the SDF contract above.
-template <class S>
-inline constexpr bool is_sdf_v = detail::is_sdf<S>::value;
+template <class S> inline constexpr bool is_sdf_v = detail::is_sdf<S>::value;
 
 /// Scalar type of an SDF.
-template <class S>
-using sdf_scalar_t = typename S::scalar_type;
+template <class S> using sdf_scalar_t = typename S::scalar_type;
 
 #if defined(__cpp_concepts)
 template <class S>
 concept Sdf = is_sdf_v<S>;
 #endif
 
-}  // namespace ebgeom
+} // namespace ebgeom
 
 /// Inside combinators: `EBGEOM_REQUIRE_SDF(S);` gives a readable error for a non-SDF operand.
 #define EBGEOM_REQUIRE_SDF(S)                                                                      \

@@ -32,7 +32,7 @@ TEST(Result, ParseErrorFormatsLocation) {
   EXPECT_EQ(e.what(), "m.obj: line 12: vertex index 9 >= vertex count 3");
   e.line = 0;
   EXPECT_EQ(e.what(), "m.obj: byte 120: vertex index 9 >= vertex count 3");
-  Result<int> r = e;  // converts through Error
+  Result<int> r = e; // converts through Error
   EXPECT_EQ(r.error().code, ErrorCode::bad_index);
   Result<int, ParseError> rp = e;
   EXPECT_EQ(rp.error().byte_offset, 120u);
@@ -44,9 +44,12 @@ TEST(Parallel, CoversEveryIndexOnceForAnyThreadCount) {
     ExecOptions opt;
     opt.threads = threads;
     opt.serial_threshold = 1;
-    parallel_for(0, hits.size(), 97, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) hits[i].fetch_add(1);
-    }, opt);
+    parallel_for(
+        0, hits.size(), 97,
+        [&](std::size_t b, std::size_t e) {
+          for (std::size_t i = b; i < e; ++i) hits[i].fetch_add(1);
+        },
+        opt);
     for (auto& h : hits) ASSERT_EQ(h.load(), 1) << "threads=" << threads;
   }
 }

@@ -6,8 +6,7 @@
 
 using namespace ebgeom;
 
-template <class T>
-class VecTest : public ::testing::Test {};
+template <class T> class VecTest : public ::testing::Test {};
 TYPED_TEST_SUITE(VecTest, test::FloatTypes);
 
 TYPED_TEST(VecTest, ArithmeticAndProducts) {
