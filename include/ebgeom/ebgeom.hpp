@@ -3,3 +3,4 @@
 /// Umbrella header: includes every public module. Users may include finer headers instead.
 
 #include "ebgeom/core.hpp"
+#include "ebgeom/mesh.hpp"
