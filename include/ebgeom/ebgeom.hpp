@@ -4,3 +4,4 @@
 
 #include "ebgeom/core.hpp"
 #include "ebgeom/mesh.hpp"
+#include "ebgeom/octree.hpp"

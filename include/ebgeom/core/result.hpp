@@ -6,6 +6,7 @@
 #include <utility>
 #include <variant>
 
+#include "ebgeom/core/config.hpp"
 #include "ebgeom/core/error.hpp"
 
 namespace ebgeom {
@@ -47,8 +48,14 @@ template <class V, class E = Error> class [[nodiscard]] Result {
   const V* operator->() const noexcept { return std::get_if<0>(&data_); }
 
   /// Precondition: `!has_value()`.
-  const E& error() const& noexcept { return *std::get_if<1>(&data_); }
-  E&& error() && noexcept { return std::move(*std::get_if<1>(&data_)); }
+  const E& error() const& noexcept {
+    EBGEOM_ASSERT(!has_value());
+    return *std::get_if<1>(&data_);
+  }
+  E&& error() && noexcept {
+    EBGEOM_ASSERT(!has_value());
+    return std::move(*std::get_if<1>(&data_));
+  }
 
   template <class U> V value_or(U&& fallback) const& {
     return has_value() ? std::get<0>(data_) : static_cast<V>(std::forward<U>(fallback));

@@ -19,8 +19,7 @@ using Index = std::uint32_t;
 /// `indices[offsets[f] .. offsets[f+1])`, counter-clockwise seen from outside (outward normal by
 /// the right-hand rule). `offsets` always starts with 0 and has `face_count() + 1` entries.
 /// Memory: 12/24 B per vertex (float/double) + 4 B per face corner + 4 B per face.
-template <class T>
-struct PolygonSoup {
+template <class T> struct PolygonSoup {
   using scalar_type = T;
   std::vector<Vec3<T>> vertices;
   std::vector<Index> indices;
@@ -50,8 +49,7 @@ struct PolygonSoup {
     offsets.push_back(static_cast<Index>(indices.size()));
   }
   /// Appends a face with the given corners (any count; validation rejects fewer than 3 later).
-  template <class Range>
-  void add_face(const Range& corners) {
+  template <class Range> void add_face(const Range& corners) {
     for (Index i : corners) indices.push_back(i);
     offsets.push_back(static_cast<Index>(indices.size()));
   }
@@ -71,4 +69,4 @@ struct PolygonSoup {
   }
 };
 
-}  // namespace ebgeom
+} // namespace ebgeom

@@ -1,0 +1,5 @@
+#pragma once
+/// \file
+/// Module umbrella: the generic octree.
+
+#include "ebgeom/octree/octree.hpp"
