@@ -27,8 +27,8 @@ struct NoPayload {
 /// The order in which nodes are created. Both give the same tree (same boxes, payloads and
 /// leaves); only the storage order of the node array differs.
 enum class OctreeOrder {
-  depth_first,   ///< whole sub-trees first; each node's descendants are contiguous in memory
-  breadth_first  ///< one level at a time; nodes of one depth are contiguous
+  depth_first,  ///< whole sub-trees first; each node's descendants are contiguous in memory
+  breadth_first ///< one level at a time; nodes of one depth are contiguous
 };
 
 /// Build parameters.
@@ -41,8 +41,7 @@ struct OctreeOptions {
 };
 
 /// Octant `c` (bit 0: upper x half, bit 1: upper y, bit 2: upper z) of `box`.
-template <class T>
-constexpr Aabb<T> octant(const Aabb<T>& box, int c) noexcept {
+template <class T> constexpr Aabb<T> octant(const Aabb<T>& box, int c) noexcept {
   const Vec3<T> m = box.center();
   return {{(c & 1) ? m.x : box.lo.x, (c & 2) ? m.y : box.lo.y, (c & 4) ? m.z : box.lo.z},
           {(c & 1) ? box.hi.x : m.x, (c & 2) ? box.hi.y : m.y, (c & 4) ? box.hi.z : m.z}};
@@ -53,8 +52,7 @@ constexpr Aabb<T> octant(const Aabb<T>& box, int c) noexcept {
 /// are thread-safe.
 ///
 /// Node size: 24 B box (float) or 48 B (double) + 12 B links + sizeof(P), padded.
-template <class T, class P = NoPayload>
-class Octree {
+template <class T, class P = NoPayload> class Octree {
  public:
   using scalar_type = T;
   using payload_type = P;
@@ -62,8 +60,8 @@ class Octree {
 
   struct Node {
     Aabb<T> box;
-    std::uint32_t first_child = no_child;  ///< index of the first of 8 children, or `no_child`
-    std::uint32_t first_primitive = 0;     ///< leaves built from boxes: range in `primitives()`
+    std::uint32_t first_child = no_child; ///< index of the first of 8 children, or `no_child`
+    std::uint32_t first_primitive = 0;    ///< leaves built from boxes: range in `primitives()`
     std::uint32_t primitive_count = 0;
     std::uint8_t depth = 0;
     P payload{};
@@ -98,12 +96,14 @@ class Octree {
                                          Aabb<T> root = Aabb<T>::empty()) {
     for (std::size_t i = 0; i < boxes.size(); ++i)
       if (!all_finite(boxes[i].lo) || !all_finite(boxes[i].hi) || boxes[i].is_empty())
-        return make_error(ErrorCode::non_finite, "octree: primitive ", i, " has an empty or non-finite box");
+        return make_error(ErrorCode::non_finite, "octree: primitive ", i,
+                          " has an empty or non-finite box");
     if (root.is_empty())
       for (const auto& b : boxes) root.extend(b);
     if (boxes.empty()) root = Aabb<T>::of(Vec3<T>::zero());
     if (auto e = check(root, opt); e.code != ErrorCode::ok) return e;
-    if (boxes.size() >= no_child) return make_error(ErrorCode::size_mismatch, "octree: too many primitives");
+    if (boxes.size() >= no_child)
+      return make_error(ErrorCode::size_mismatch, "octree: too many primitives");
 
     Octree tree;
     tree.nodes_.push_back(Node{root});
@@ -140,7 +140,9 @@ class Octree {
   const Node& root() const noexcept { return nodes_[0]; }
   std::size_t size() const noexcept { return nodes_.size(); }
   /// Primitive indices referenced by leaves (`first_primitive`, `primitive_count`).
-  Span<const std::uint32_t> primitives() const noexcept { return {primitives_.data(), primitives_.size()}; }
+  Span<const std::uint32_t> primitives() const noexcept {
+    return {primitives_.data(), primitives_.size()};
+  }
   Span<const std::uint32_t> primitives(const Node& leaf) const noexcept {
     return {primitives_.data() + leaf.first_primitive, leaf.primitive_count};
   }
@@ -166,8 +168,7 @@ class Octree {
 
   /// Depth-first traversal: `visit(index, node) -> bool` returns whether to descend into the
   /// node's children (its return value is ignored for leaves). Children in octant order.
-  template <class Visit>
-  void traverse(Visit&& visit) const {
+  template <class Visit> void traverse(Visit&& visit) const {
     if (nodes_.empty()) return;
     std::vector<std::uint32_t> todo{0};
     while (!todo.empty()) {
@@ -199,9 +200,11 @@ class Octree {
       visit(top.index, n);
       if (n.is_leaf()) continue;
       std::array<Pending, 8> kids;
-      for (int c = 0; c < 8; ++c) kids[c] = {priority(nodes_[n.first_child + c]), n.first_child + c};
+      for (int c = 0; c < 8; ++c)
+        kids[c] = {priority(nodes_[n.first_child + c]), n.first_child + c};
       // push far-to-near so the nearest pops first
-      std::sort(kids.begin(), kids.end(), [](const Pending& a, const Pending& b) { return a.prio > b.prio; });
+      std::sort(kids.begin(), kids.end(),
+                [](const Pending& a, const Pending& b) { return a.prio > b.prio; });
       for (const Pending& k : kids)
         if (k.prio < bound()) todo.push_back(k);
     }
@@ -210,9 +213,11 @@ class Octree {
  private:
   static Error check(const Aabb<T>& root, const OctreeOptions& opt) {
     if (root.is_empty() || !all_finite(root.lo) || !all_finite(root.hi))
-      return make_error(ErrorCode::invalid_argument, "octree: the root box must be finite and non-empty");
+      return make_error(ErrorCode::invalid_argument,
+                        "octree: the root box must be finite and non-empty");
     if (opt.max_depth < 0 || opt.max_depth > 21)
-      return make_error(ErrorCode::invalid_argument, "octree: max_depth ", opt.max_depth, " is outside [0, 21]");
+      return make_error(ErrorCode::invalid_argument, "octree: max_depth ", opt.max_depth,
+                        " is outside [0, 21]");
     return {};
   }
 
@@ -234,8 +239,9 @@ class Octree {
   // Grows the tree from the root. `split(i)` decides node i (after its payload is set);
   // `on_children(parent, first)` runs right after children are created.
   template <class Split, class OnChildren = void (*)(std::uint32_t, std::uint32_t)>
-  void grow(OctreeOrder order, Split& split,
-            OnChildren on_children = [](std::uint32_t, std::uint32_t) {}) {
+  void grow(
+      OctreeOrder order, Split& split,
+      OnChildren on_children = [](std::uint32_t, std::uint32_t) {}) {
     if (order == OctreeOrder::breadth_first) {
       // Level by level: every node of depth d is decided before any of depth d + 1 is created.
       std::size_t level_begin = 0, level_end = 1;
@@ -266,4 +272,4 @@ class Octree {
   std::vector<std::uint32_t> primitives_;
 };
 
-}  // namespace ebgeom
+} // namespace ebgeom

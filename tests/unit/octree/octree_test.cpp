@@ -10,14 +10,10 @@ using namespace ebgeom;
 
 namespace {
 
-template <class T>
-T sphere_sd(const Vec3<T>& p) {
-  return norm(p) - T(0.7);
-}
+template <class T> T sphere_sd(const Vec3<T>& p) { return norm(p) - T(0.7); }
 
 // Refine cells the sphere's surface may cross; the payload records the centre value.
-template <class T>
-struct SurfaceRefine {
+template <class T> struct SurfaceRefine {
   bool operator()(const Aabb<T>& box, int, T& payload) const {
     payload = sphere_sd(box.center());
     return std::abs(payload) <= T(0.5) * norm(box.extent());
@@ -25,7 +21,8 @@ struct SurfaceRefine {
 };
 
 template <class T, class P>
-void expect_same_tree(const Octree<T, P>& a, std::uint32_t ia, const Octree<T, P>& b, std::uint32_t ib) {
+void expect_same_tree(const Octree<T, P>& a, std::uint32_t ia, const Octree<T, P>& b,
+                      std::uint32_t ib) {
   const auto& na = a.node(ia);
   const auto& nb = b.node(ib);
   ASSERT_EQ(na.box, nb.box);
@@ -35,16 +32,16 @@ void expect_same_tree(const Octree<T, P>& a, std::uint32_t ia, const Octree<T, P
   if (na.is_leaf()) {
     const auto pa = a.primitives(na);
     const auto pb = b.primitives(nb);
-    ASSERT_EQ(std::vector<std::uint32_t>(pa.begin(), pa.end()), std::vector<std::uint32_t>(pb.begin(), pb.end()));
+    ASSERT_EQ(std::vector<std::uint32_t>(pa.begin(), pa.end()),
+              std::vector<std::uint32_t>(pb.begin(), pb.end()));
     return;
   }
   for (int c = 0; c < 8; ++c) expect_same_tree(a, na.first_child + c, b, nb.first_child + c);
 }
 
-}  // namespace
+} // namespace
 
-template <class T>
-class OctreeTest : public ::testing::Test {};
+template <class T> class OctreeTest : public ::testing::Test {};
 TYPED_TEST_SUITE(OctreeTest, test::FloatTypes);
 
 TYPED_TEST(OctreeTest, DepthFirstAndBreadthFirstBuildTheSameTree) {
@@ -60,9 +57,11 @@ TYPED_TEST(OctreeTest, DepthFirstAndBreadthFirstBuildTheSameTree) {
   EXPECT_GT(df.size(), 1000u);
   expect_same_tree(df, 0, bf, 0);
   // storage orders really differ: breadth-first stores depths non-decreasing
-  for (std::size_t i = 1; i < bf.size(); ++i) ASSERT_LE(bf.nodes()[i - 1].depth, bf.nodes()[i].depth);
+  for (std::size_t i = 1; i < bf.size(); ++i)
+    ASSERT_LE(bf.nodes()[i - 1].depth, bf.nodes()[i].depth);
   bool df_monotone = true;
-  for (std::size_t i = 1; i < df.size(); ++i) df_monotone &= df.nodes()[i - 1].depth <= df.nodes()[i].depth;
+  for (std::size_t i = 1; i < df.size(); ++i)
+    df_monotone &= df.nodes()[i - 1].depth <= df.nodes()[i].depth;
   EXPECT_FALSE(df_monotone);
 }
 
@@ -83,7 +82,7 @@ TYPED_TEST(OctreeTest, ChildrenTileTheParentAndDepthIsLimited) {
       ASSERT_EQ(int(ch.depth), int(n.depth) + 1);
       u.extend(ch.box);
       vol += ch.box.volume();
-      for (int d = c + 1; d < 8; ++d) {  // interiors are disjoint: overlap has zero volume
+      for (int d = c + 1; d < 8; ++d) { // interiors are disjoint: overlap has zero volume
         const auto& o = tree.node(n.first_child + d).box;
         const Vec3<T> lo = max(ch.box.lo, o.lo), hi = min(ch.box.hi, o.hi);
         ASSERT_TRUE(lo.x >= hi.x || lo.y >= hi.y || lo.z >= hi.z);
@@ -98,7 +97,8 @@ TYPED_TEST(OctreeTest, RefinementReachesEverySurfacePoint) {
   using T = TypeParam;
   OctreeOptions opt;
   opt.max_depth = 5;
-  const auto tree = Octree<T, T>::build(Aabb<T>::of({-1, -1, -1}, {1, 1, 1}), SurfaceRefine<T>{}, opt).value();
+  const auto tree =
+      Octree<T, T>::build(Aabb<T>::of({-1, -1, -1}, {1, 1, 1}), SurfaceRefine<T>{}, opt).value();
   std::mt19937_64 rng(7);
   for (int i = 0; i < 2000; ++i) {
     const Vec3<T> p = test::random_unit<T>(rng) * T(0.7);
@@ -146,7 +146,8 @@ TYPED_TEST(OctreeTest, OrderedTraversalFindsTheNearestPoint) {
   opt.max_leaf_size = 6;
   const auto tree = Octree<T>::build_from_boxes(Span<const Aabb<T>>(boxes), opt).value();
   std::size_t visited_total = 0;
-  for (const auto& q : test::random_points(Aabb<T>::of({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5}), 300, 5)) {
+  for (const auto& q :
+       test::random_points(Aabb<T>::of({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5}), 300, 5)) {
     T best2 = std::numeric_limits<T>::infinity();
     std::uint32_t best = 0;
     tree.traverse_ordered([&](const auto& n) { return n.box.distance2(q); }, [&] { return best2; },
@@ -168,17 +169,20 @@ TYPED_TEST(OctreeTest, OrderedTraversalFindsTheNearestPoint) {
 }
 
 TEST(Octree, RejectsBadParameters) {
-  EXPECT_EQ(Octree<double>::build(Aabb<double>::empty(), [](auto&&...) { return false; }).error().code,
-            ErrorCode::invalid_argument);
+  EXPECT_EQ(
+      Octree<double>::build(Aabb<double>::empty(), [](auto&&...) { return false; }).error().code,
+      ErrorCode::invalid_argument);
   OctreeOptions opt;
   opt.max_depth = 40;
-  EXPECT_EQ(Octree<double>::build(Aabb<double>::of({0, 0, 0}, {1, 1, 1}), [](auto&&...) { return true; }, opt)
+  EXPECT_EQ(Octree<double>::build(
+                Aabb<double>::of({0, 0, 0}, {1, 1, 1}), [](auto&&...) { return true; }, opt)
                 .error()
                 .code,
             ErrorCode::invalid_argument);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<Aabb<double>> bad{Aabb<double>({0, 0, 0}, {nan, 1, 1})};
-  EXPECT_EQ(Octree<double>::build_from_boxes(Span<const Aabb<double>>(bad)).error().code, ErrorCode::non_finite);
+  EXPECT_EQ(Octree<double>::build_from_boxes(Span<const Aabb<double>>(bad)).error().code,
+            ErrorCode::non_finite);
   // a single point-sized root still builds (one leaf)
   std::vector<Aabb<double>> one{Aabb<double>::of({1, 1, 1})};
   const auto t = Octree<double>::build_from_boxes(Span<const Aabb<double>>(one)).value();
