@@ -25,8 +25,7 @@
 namespace ebgeom {
 
 /// AMReX EB2 implicit function over the ebgeom SDF `S`.
-template <class S>
-class AmrexImplicitFunction {
+template <class S> class AmrexImplicitFunction {
  public:
   explicit AmrexImplicitFunction(S sdf, const EbOptions& opt = {}) : f_(std::move(sdf), opt) {}
   explicit AmrexImplicitFunction(EbFunction<S> f) : f_(std::move(f)) {}
@@ -45,4 +44,4 @@ class AmrexImplicitFunction {
   EbFunction<S> f_;
 };
 
-}  // namespace ebgeom
+} // namespace ebgeom

@@ -21,8 +21,7 @@
 
 /// Chombo BaseIF over the ebgeom SDF `S` (in the global namespace, like Chombo's own IFs; Chombo
 /// builds with a namespace configure their own via NamespaceHeader.H before including this).
-template <class S>
-class ChomboImplicitFunction : public BaseIF {
+template <class S> class ChomboImplicitFunction : public BaseIF {
  public:
   explicit ChomboImplicitFunction(S sdf, const ebgeom::EbOptions& opt = {})
       : f_(std::move(sdf), opt) {}
@@ -44,6 +43,5 @@ class ChomboImplicitFunction : public BaseIF {
 };
 
 namespace ebgeom {
-template <class S>
-using ChomboImplicitFunction = ::ChomboImplicitFunction<S>;
-}  // namespace ebgeom
+template <class S> using ChomboImplicitFunction = ::ChomboImplicitFunction<S>;
+} // namespace ebgeom

@@ -13,23 +13,25 @@ struct Ball {
   using scalar_type = double;
   static constexpr ebgeom::SdfKind kind = ebgeom::SdfKind::exact;
   double operator()(const ebgeom::Vec3<double>& p) const noexcept { return ebgeom::norm(p) - 1.0; }
-  ebgeom::Aabb<double> bounds() const noexcept { return ebgeom::Aabb<double>::of({-1, -1, -1}, {1, 1, 1}); }
+  ebgeom::Aabb<double> bounds() const noexcept {
+    return ebgeom::Aabb<double>::of({-1, -1, -1}, {1, 1, 1});
+  }
 };
 
 constexpr int dim = AMREX_SPACEDIM;
 
-}  // namespace
+} // namespace
 
 TEST(AdapterMock, AmrexImplicitFunction) {
   ebgeom::EbOptions opt;
   opt.z_slice = 0.5;
   const ebgeom::AmrexImplicitFunction<Ball> f(Ball{}, opt);
-  const ebgeom::AmrexImplicitFunction<Ball> copy = f;  // AMReX stores it by value
-  const double z = dim == 3 ? 0.0 : 0.5;               // 2D evaluates the slice
+  const ebgeom::AmrexImplicitFunction<Ball> copy = f; // AMReX stores it by value
+  const double z = dim == 3 ? 0.0 : 0.5;              // 2D evaluates the slice
   amrex::RealArray p{};
   p[0] = 2.0;
   p[1] = 0.0;
-  const double expected = -(std::sqrt(4.0 + z * z) - 1.0);  // fluid outside: negative there
+  const double expected = -(std::sqrt(4.0 + z * z) - 1.0); // fluid outside: negative there
   EXPECT_DOUBLE_EQ(copy(p), expected);
 #if AMREX_SPACEDIM == 3
   EXPECT_DOUBLE_EQ(f(2.0, 0.0, 0.0), expected);
@@ -48,8 +50,9 @@ TEST(AdapterMock, ChomboImplicitFunction) {
   RealVect p{};
   p.v[0] = 0.25;
   const double z = dim == 3 ? 0.0 : 0.5;
-  const double expected = std::sqrt(0.0625 + z * z) - 1.0;  // fluid inside: +S, negative inside
+  const double expected = std::sqrt(0.0625 + z * z) - 1.0; // fluid inside: +S, negative inside
   EXPECT_DOUBLE_EQ(clone->value(p), expected);
   EXPECT_DOUBLE_EQ(f.value(p), expected);
-  EXPECT_EQ(&dynamic_cast<ChomboImplicitFunction<Ball>&>(*clone).function().sdf(), &f.function().sdf());
+  EXPECT_EQ(&dynamic_cast<ChomboImplicitFunction<Ball>&>(*clone).function().sdf(),
+            &f.function().sdf());
 }

@@ -20,8 +20,8 @@ namespace ebgeom {
 
 /// Which side of the ebgeom surface is fluid (the EB code's computational domain).
 enum class FluidSide {
-  outside,  ///< flow around the object: EB value = -S (the default)
-  inside    ///< flow inside the object: EB value = +S
+  outside, ///< flow around the object: EB value = -S (the default)
+  inside   ///< flow inside the object: EB value = +S
 };
 
 /// Adapter options.
@@ -35,8 +35,7 @@ struct EbOptions {
 /// immutable geometry: AMReX copies implicit functions by value, Chombo clones them through
 /// `newImplicitFunction`), and concurrent `const` calls are safe as long as `S`'s are (every
 /// ebgeom SDF is). Evaluation costs one inlined call to `S` plus a multiply.
-template <class S>
-class EbFunction {
+template <class S> class EbFunction {
   EBGEOM_REQUIRE_SDF(S);
 
  public:
@@ -54,18 +53,15 @@ class EbFunction {
         z_slice_(scalar_type(opt.z_slice)) {}
 
   /// EB value at a 3D point (< 0 fluid, > 0 covered, 0 on the boundary).
-  template <class R>
-  R operator()(R x, R y, R z) const noexcept {
+  template <class R> R operator()(R x, R y, R z) const noexcept {
     return R(sign_ * (*sdf_)(Vec3<scalar_type>{scalar_type(x), scalar_type(y), scalar_type(z)}));
   }
   /// EB value in a 2D build: the point (x, y, z_slice).
-  template <class R>
-  R operator()(R x, R y) const noexcept {
+  template <class R> R operator()(R x, R y) const noexcept {
     return R(sign_ * (*sdf_)(Vec3<scalar_type>{scalar_type(x), scalar_type(y), z_slice_}));
   }
   /// EB value from `dim` (2 or 3) coordinates, as AMReX's RealArray and Chombo's RealVect give.
-  template <class R>
-  R value(const R* x, int dim) const noexcept {
+  template <class R> R value(const R* x, int dim) const noexcept {
     return dim >= 3 ? (*this)(x[0], x[1], x[2]) : (*this)(x[0], x[1]);
   }
 
@@ -83,4 +79,4 @@ class EbFunction {
   scalar_type z_slice_;
 };
 
-}  // namespace ebgeom
+} // namespace ebgeom

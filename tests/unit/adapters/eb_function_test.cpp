@@ -13,8 +13,7 @@ using namespace ebgeom;
 namespace {
 
 // A closed-form test geometry (sphere of radius 1 at c), independent of the shapes module.
-template <class T>
-struct Ball {
+template <class T> struct Ball {
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
   Vec3<T> c{0, 0, 0};
@@ -22,14 +21,14 @@ struct Ball {
   Aabb<T> bounds() const noexcept { return Aabb<T>(c, c).grown(T(1)); }
 };
 
-}  // namespace
+} // namespace
 
 TEST(EbFunction, FluidOutsideFlipsTheSign) {
   const EbFunction<Ball<double>> f(Ball<double>{});
   EXPECT_EQ(f.fluid_side(), FluidSide::outside);
-  EXPECT_DOUBLE_EQ(f(3.0, 0.0, 0.0), -2.0);  // outside the ball: fluid, negative for the EB code
-  EXPECT_DOUBLE_EQ(f(0.0, 0.0, 0.0), 1.0);   // inside the ball: covered, positive
-  EXPECT_DOUBLE_EQ(f(1.0, 0.0, 0.0), 0.0);   // boundary
+  EXPECT_DOUBLE_EQ(f(3.0, 0.0, 0.0), -2.0); // outside the ball: fluid, negative for the EB code
+  EXPECT_DOUBLE_EQ(f(0.0, 0.0, 0.0), 1.0);  // inside the ball: covered, positive
+  EXPECT_DOUBLE_EQ(f(1.0, 0.0, 0.0), 0.0);  // boundary
 }
 
 TEST(EbFunction, FluidInsideKeepsTheSign) {
@@ -63,8 +62,8 @@ TEST(EbFunction, FloatGeometryWithDoubleCoordinates) {
 TEST(EbFunction, CopiesShareOneImmutableGeometry) {
   const EbFunction<Ball<double>> f(Ball<double>{{1, 2, 3}});
   EXPECT_EQ(f.shared_sdf().use_count(), 1);
-  const EbFunction<Ball<double>> g = f;  // what AMReX does when it stores the function
-  const auto h = std::make_unique<EbFunction<Ball<double>>>(g);  // what a Chombo clone does
+  const EbFunction<Ball<double>> g = f; // what AMReX does when it stores the function
+  const auto h = std::make_unique<EbFunction<Ball<double>>>(g); // what a Chombo clone does
   EXPECT_EQ(&g.sdf(), &f.sdf());
   EXPECT_EQ(&h->sdf(), &f.sdf());
   EXPECT_EQ(f.shared_sdf().use_count(), 3);
@@ -86,7 +85,7 @@ TEST(EbFunction, ConcurrentCallsMatchSerialOnes) {
   std::vector<std::thread> threads;
   for (int t = 0; t < 4; ++t)
     threads.emplace_back([&, t] {
-      const EbFunction<Ball<double>> mine = f;  // each thread holds its own copy, as AMReX does
+      const EbFunction<Ball<double>> mine = f; // each thread holds its own copy, as AMReX does
       for (std::size_t i = t; i < pts.size(); i += 4) par[i] = mine(pts[i].x, pts[i].y, pts[i].z);
     });
   for (auto& th : threads) th.join();
