@@ -3,5 +3,7 @@
 /// Umbrella header: includes every public module. Users may include finer headers instead.
 
 #include "ebgeom/core.hpp"
+#include "ebgeom/geom.hpp"
 #include "ebgeom/mesh.hpp"
 #include "ebgeom/octree.hpp"
+#include "ebgeom/sdf/brute_force_mesh_sdf.hpp"

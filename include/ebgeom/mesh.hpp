@@ -1,5 +1,11 @@
 #pragma once
 /// \file
-/// Module umbrella: polygon soups, half-edge and triangle meshes, validation.
+/// Module umbrella: polygon soups, half-edge and triangle meshes, pseudonormals, procedural meshes,
+/// validation.
 
+#include "ebgeom/mesh/generate.hpp"
+#include "ebgeom/mesh/polygon_geometry.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
+#include "ebgeom/mesh/pseudonormals.hpp"
+#include "ebgeom/mesh/soup_check.hpp"
+#include "ebgeom/mesh/triangle_mesh.hpp"

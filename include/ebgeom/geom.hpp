@@ -1,0 +1,6 @@
+#pragma once
+/// \file
+/// Module umbrella: per-primitive geometric kernels (closest point on a triangle, solid angles).
+
+#include "ebgeom/geom/closest_point_triangle.hpp"
+#include "ebgeom/geom/solid_angle.hpp"
