@@ -3,6 +3,7 @@
 /// Umbrella header: includes every public module. Users may include finer headers instead.
 
 #include "ebgeom/core.hpp"
+#include "ebgeom/eval.hpp"
 #include "ebgeom/geom.hpp"
 #include "ebgeom/mesh.hpp"
 #include "ebgeom/octree.hpp"

@@ -1,0 +1,173 @@
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "ebgeom/eval/grid.hpp"
+#include "ebgeom/eval/write_grid.hpp"
+#include "test_shapes.hpp"
+#include "test_support.hpp"
+
+using namespace ebgeom;
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "ebgeom_wg_" + name;
+}
+
+template <class T> struct Fixture {
+  GridSpec<T> spec{Aabb<T>({T(-1), T(-2), T(0)}, {T(1), T(2), T(1)}), {{5, 7, 3}},
+                   Centering::cell};
+  std::vector<T> values;
+  Fixture() {
+    const test::Ball<T> b{{T(0), T(0), T(0.5)}, T(0.8)};
+    values.resize(spec.size());
+    for (std::size_t k = 0; k < spec.nz(); ++k)
+      for (std::size_t j = 0; j < spec.ny(); ++j)
+        for (std::size_t i = 0; i < spec.nx(); ++i)
+          values[spec.index(i, j, k)] = b(spec.point(i, j, k));
+  }
+};
+
+template <class D> std::vector<double> decode(const char* p, std::size_t n) {
+  std::vector<double> v(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    D d;
+    std::memcpy(&d, p + i * sizeof(D), sizeof(D));
+    v[i] = d;
+  }
+  return v;
+}
+
+} // namespace
+
+template <class T> class WriteGridTest : public ::testing::Test {};
+TYPED_TEST_SUITE(WriteGridTest, test::FloatTypes);
+
+TYPED_TEST(WriteGridTest, NpyHeaderShapeAndValues) {
+  using T = TypeParam;
+  Fixture<T> f;
+  for (DType dt : {DType::float32, DType::float64}) {
+    const std::string path = temp_path("a.npy");
+    WriteGridOptions opt;
+    opt.dtype = dt;
+    ASSERT_TRUE(write_npy(path, f.spec, Span<const T>(f.values), opt));
+    const std::string bytes = slurp(path);
+    ASSERT_GE(bytes.size(), 10u);
+    EXPECT_EQ(bytes.substr(0, 6), std::string("\x93NUMPY"));
+    EXPECT_EQ(bytes[6], 1);
+    const std::size_t hlen =
+        std::size_t(static_cast<unsigned char>(bytes[8])) | std::size_t(bytes[9]) << 8;
+    EXPECT_EQ((10 + hlen) % 64, 0u);
+    const std::string header = bytes.substr(10, hlen);
+    EXPECT_NE(header.find(dt == DType::float32 ? "'descr': '<f4'" : "'descr': '<f8'"),
+              std::string::npos)
+        << header;
+    EXPECT_NE(header.find("'fortran_order': False"), std::string::npos);
+    EXPECT_NE(header.find("'shape': (3, 7, 5)"), std::string::npos) << header;
+    EXPECT_EQ(header.back(), '\n');
+    const std::size_t w = dt == DType::float32 ? 4 : 8;
+    ASSERT_EQ(bytes.size(), 10 + hlen + f.values.size() * w);
+    const auto v = dt == DType::float32 ? decode<float>(bytes.data() + 10 + hlen, f.values.size())
+                                        : decode<double>(bytes.data() + 10 + hlen, f.values.size());
+    for (std::size_t n = 0; n < v.size(); ++n) {
+      if (dt == DType::float32)
+        ASSERT_EQ(float(v[n]), float(f.values[n]));
+      else
+        ASSERT_EQ(v[n], double(f.values[n]));
+    }
+    std::remove(path.c_str());
+  }
+}
+
+TEST(WriteNpy, OneDimensionalShapeHasTrailingComma) {
+  const std::vector<double> v{1, 2, 3};
+  const std::string path = temp_path("b.npy");
+  ASSERT_TRUE(write_npy(path, Span<const double>(v), {3}, DType::float64));
+  EXPECT_NE(slurp(path).find("'shape': (3,)"), std::string::npos);
+  EXPECT_EQ(write_npy(path, Span<const double>(v), {2, 2}).error().code,
+            ErrorCode::invalid_argument);
+  std::remove(path.c_str());
+}
+
+TYPED_TEST(WriteGridTest, VtiHeaderAndAppendedData) {
+  using T = TypeParam;
+  Fixture<T> f;
+  const std::string path = temp_path("a.vti");
+  ASSERT_TRUE(write_grid(path, f.spec, Span<const T>(f.values)));
+  const std::string bytes = slurp(path);
+  EXPECT_NE(bytes.find("type=\"ImageData\""), std::string::npos);
+  EXPECT_NE(bytes.find("WholeExtent=\"0 4 0 6 0 2\""), std::string::npos);
+  // Origin = first cell centre, spacing = cell size.
+  std::istringstream origin(bytes.substr(bytes.find("Origin=\"") + 8));
+  double ox, oy, oz;
+  origin >> ox >> oy >> oz;
+  EXPECT_NEAR(ox, -0.8, 1e-6);
+  EXPECT_NEAR(oy, -2 + 2.0 / 7, 1e-6);
+  EXPECT_NEAR(oz, 1.0 / 6, 1e-6);
+  std::istringstream spacing(bytes.substr(bytes.find("Spacing=\"") + 9));
+  double hx, hy, hz;
+  spacing >> hx >> hy >> hz;
+  EXPECT_NEAR(hx, 0.4, 1e-6);
+  EXPECT_NEAR(hy, 4.0 / 7, 1e-6);
+  EXPECT_NEAR(hz, 1.0 / 3, 1e-6);
+  EXPECT_NE(bytes.find("type=\"Float32\""), std::string::npos);
+  const std::size_t us = bytes.find('_', bytes.find("<AppendedData"));
+  ASSERT_NE(us, std::string::npos);
+  std::uint64_t nbytes = 0;
+  std::memcpy(&nbytes, bytes.data() + us + 1, 8);
+  ASSERT_EQ(nbytes, f.values.size() * 4);
+  const auto v = decode<float>(bytes.data() + us + 9, f.values.size());
+  for (std::size_t n = 0; n < v.size(); ++n) ASSERT_EQ(float(v[n]), float(f.values[n]));
+  EXPECT_NE(bytes.find("</VTKFile>", us + 9 + nbytes), std::string::npos);
+  std::remove(path.c_str());
+}
+
+TYPED_TEST(WriteGridTest, RawWithJsonSidecar) {
+  using T = TypeParam;
+  Fixture<T> f;
+  const std::string path = temp_path("grid.raw");
+  WriteGridOptions opt;
+  opt.dtype = DType::float64;
+  ASSERT_TRUE(write_grid(path, f.spec, Span<const T>(f.values), opt));
+  const std::string raw = slurp(path);
+  ASSERT_EQ(raw.size(), f.values.size() * 8);
+  const auto v = decode<double>(raw.data(), f.values.size());
+  for (std::size_t n = 0; n < v.size(); ++n) ASSERT_EQ(v[n], double(f.values[n]));
+  EXPECT_EQ(raw_sidecar_path(path), temp_path("grid.json"));
+  const std::string js = slurp(temp_path("grid.json"));
+  EXPECT_NE(js.find("\"dims\": [5, 7, 3]"), std::string::npos) << js;
+  EXPECT_NE(js.find("\"dtype\": \"float64\""), std::string::npos);
+  EXPECT_NE(js.find("\"file\": \"ebgeom_wg_grid.raw\""), std::string::npos) << js;
+  EXPECT_NE(js.find("\"centering\": \"cell\""), std::string::npos);
+  std::remove(path.c_str());
+  std::remove(temp_path("grid.json").c_str());
+}
+
+TEST(WriteGrid, ErrorsLeaveNoFileBehind) {
+  Fixture<double> f;
+  EXPECT_EQ(write_grid("/nonexistent-dir/x.vti", f.spec, Span<const double>(f.values))
+                .error()
+                .code,
+            ErrorCode::io);
+  EXPECT_EQ(write_grid(temp_path("x.txt"), f.spec, Span<const double>(f.values)).error().code,
+            ErrorCode::unsupported);
+  const std::string path = temp_path("short.npy");
+  std::vector<double> few(3);
+  EXPECT_EQ(write_grid(path, f.spec, Span<const double>(few)).error().code,
+            ErrorCode::invalid_argument);
+  EXPECT_FALSE(test::file_exists(path));
+  EXPECT_FALSE(test::file_exists(path + ".ebgeom-tmp"));
+  EXPECT_EQ(raw_sidecar_path("dir.v2/out"), "dir.v2/out.json");
+}
