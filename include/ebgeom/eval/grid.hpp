@@ -36,7 +36,9 @@ enum class Centering : std::uint8_t {
   node  ///< n samples per axis including both faces: lo + i h, h = extent / (n - 1)
 };
 
-inline const char* to_string(Centering c) noexcept { return c == Centering::cell ? "cell" : "node"; }
+inline const char* to_string(Centering c) noexcept {
+  return c == Centering::cell ? "cell" : "node";
+}
 
 /// A regular grid of samples over `box`. `dims` are the number of samples per axis (x, y, z).
 /// Plain data; `validate()` checks it. Sample `(i, j, k)` lives at `point(i, j, k)` and at index
@@ -92,8 +94,8 @@ template <class T> struct GridSpec {
         return make_error(ErrorCode::invalid_argument, "grid box has lo >= hi on axis ", "xyz"[a],
                           " (", box.lo[a], " >= ", box.hi[a], ")");
       if (dims[a] < 1 || dims[a] > (std::size_t(1) << 21))
-        return make_error(ErrorCode::invalid_argument, "grid resolution on axis ", "xyz"[a],
-                          " is ", dims[a], "; expected 1 to 2097152");
+        return make_error(ErrorCode::invalid_argument, "grid resolution on axis ", "xyz"[a], " is ",
+                          dims[a], "; expected 1 to 2097152");
     }
     return Ok{};
   }

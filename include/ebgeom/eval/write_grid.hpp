@@ -30,7 +30,9 @@ namespace ebgeom {
 /// Element type written to a file.
 enum class DType : std::uint8_t { float32, float64 };
 
-inline const char* to_string(DType d) noexcept { return d == DType::float32 ? "float32" : "float64"; }
+inline const char* to_string(DType d) noexcept {
+  return d == DType::float32 ? "float32" : "float64";
+}
 inline std::size_t dtype_size(DType d) noexcept { return d == DType::float32 ? 4 : 8; }
 
 /// Options of the grid writers.
@@ -101,7 +103,8 @@ class AtomicFile {
     out_.flush();
     const bool good = out_.good();
     out_.close();
-    if (!good || out_.fail()) return make_error(ErrorCode::io, path_, ": write failed (disk full?)");
+    if (!good || out_.fail())
+      return make_error(ErrorCode::io, path_, ": write failed (disk full?)");
     return Ok{};
   }
   Result<Ok> commit() {
@@ -119,8 +122,7 @@ class AtomicFile {
 };
 
 /// Streams `values` converted to `dtype`, in chunks, in host byte order.
-template <class T>
-void write_values(std::ostream& os, Span<const T> values, DType dtype) {
+template <class T> void write_values(std::ostream& os, Span<const T> values, DType dtype) {
   constexpr std::size_t chunk = 1 << 14;
   if (dtype == DType::float32) {
     std::vector<float> buf(std::min(chunk, values.size()));
@@ -167,22 +169,30 @@ inline std::string xml_escape(const std::string& s) {
   std::string r;
   for (char c : s) {
     switch (c) {
-    case '&': r += "&amp;"; break;
-    case '<': r += "&lt;"; break;
-    case '>': r += "&gt;"; break;
-    case '"': r += "&quot;"; break;
-    default: r += c;
+    case '&':
+      r += "&amp;";
+      break;
+    case '<':
+      r += "&lt;";
+      break;
+    case '>':
+      r += "&gt;";
+      break;
+    case '"':
+      r += "&quot;";
+      break;
+    default:
+      r += c;
     }
   }
   return r;
 }
 
-template <class T>
-Result<Ok> check_grid_values(const GridSpec<T>& spec, std::size_t count) {
+template <class T> Result<Ok> check_grid_values(const GridSpec<T>& spec, std::size_t count) {
   if (auto ok = spec.validate(); !ok) return ok;
   if (count != spec.size())
-    return make_error(ErrorCode::invalid_argument, "grid has ", spec.size(), " samples but ",
-                      count, " values were given");
+    return make_error(ErrorCode::invalid_argument, "grid has ", spec.size(), " samples but ", count,
+                      " values were given");
   return Ok{};
 }
 
@@ -197,8 +207,8 @@ Result<Ok> write_npy(const std::string& path, Span<const T> values,
   std::size_t count = 1;
   for (std::size_t d : shape) count *= d;
   if (count != values.size())
-    return make_error(ErrorCode::invalid_argument, path, ": shape holds ", count,
-                      " elements but ", values.size(), " values were given");
+    return make_error(ErrorCode::invalid_argument, path, ": shape holds ", count, " elements but ",
+                      values.size(), " values were given");
   std::string dict = "{'descr': '";
   dict += detail::host_is_little_endian() ? '<' : '>';
   dict += dtype == DType::float32 ? "f4" : "f8";
@@ -254,8 +264,7 @@ Result<Ok> write_vti(const std::string& path, const GridSpec<T>& spec, Span<cons
   const Vec3<T> o = spec.origin(), h = spec.spacing();
   auto xml = detail::number_stream();
   const std::string extent = "0 " + std::to_string(spec.nx() - 1) + " 0 " +
-                             std::to_string(spec.ny() - 1) + " 0 " +
-                             std::to_string(spec.nz() - 1);
+                             std::to_string(spec.ny() - 1) + " 0 " + std::to_string(spec.nz() - 1);
   xml << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\""
       << (detail::host_is_little_endian() ? "LittleEndian" : "BigEndian")

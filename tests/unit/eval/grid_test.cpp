@@ -65,8 +65,8 @@ TYPED_TEST(GridTest, SampleGridEqualsPointwiseForAnyThreadCount) {
   using T = TypeParam;
   const test::Ball<T> ball{{T(0.1), T(-0.2), T(0.05)}, T(0.7)};
   // Odd sizes: partial tiles on every axis.
-  GridSpec<T> g{Aabb<T>({T(-1), T(-1), T(-1)}, {T(1), T(1.2), T(0.9)}), {{19, 11, 13}},
-                Centering::cell};
+  GridSpec<T> g{
+      Aabb<T>({T(-1), T(-1), T(-1)}, {T(1), T(1.2), T(0.9)}), {{19, 11, 13}}, Centering::cell};
   std::vector<T> ref(g.size());
   for (std::size_t k = 0; k < g.nz(); ++k)
     for (std::size_t j = 0; j < g.ny(); ++j)

@@ -27,8 +27,7 @@ std::string temp_path(const std::string& name) {
 }
 
 template <class T> struct Fixture {
-  GridSpec<T> spec{Aabb<T>({T(-1), T(-2), T(0)}, {T(1), T(2), T(1)}), {{5, 7, 3}},
-                   Centering::cell};
+  GridSpec<T> spec{Aabb<T>({T(-1), T(-2), T(0)}, {T(1), T(2), T(1)}), {{5, 7, 3}}, Centering::cell};
   std::vector<T> values;
   Fixture() {
     const test::Ball<T> b{{T(0), T(0), T(0.5)}, T(0.8)};
@@ -157,9 +156,7 @@ TYPED_TEST(WriteGridTest, RawWithJsonSidecar) {
 
 TEST(WriteGrid, ErrorsLeaveNoFileBehind) {
   Fixture<double> f;
-  EXPECT_EQ(write_grid("/nonexistent-dir/x.vti", f.spec, Span<const double>(f.values))
-                .error()
-                .code,
+  EXPECT_EQ(write_grid("/nonexistent-dir/x.vti", f.spec, Span<const double>(f.values)).error().code,
             ErrorCode::io);
   EXPECT_EQ(write_grid(temp_path("x.txt"), f.spec, Span<const double>(f.values)).error().code,
             ErrorCode::unsupported);
