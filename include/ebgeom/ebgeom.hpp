@@ -7,4 +7,5 @@
 #include "ebgeom/geom.hpp"
 #include "ebgeom/mesh.hpp"
 #include "ebgeom/octree.hpp"
+#include "ebgeom/sdf/brute_force_dcel_sdf.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"

@@ -111,8 +111,9 @@ template <class T> Result<PolygonSoup<T>> make_icosahedron(T radius = T(1)) {
 /// Error `invalid_argument` unless 0 <= subdivisions <= 10 and radius > 0. O(output).
 template <class T> Result<PolygonSoup<T>> make_icosphere(int subdivisions, T radius = T(1)) {
   if (subdivisions < 0 || subdivisions > 10)
-    return make_error(ErrorCode::invalid_argument, "make_icosphere needs 0 <= subdivisions <= 10, "
-                                                   "got ",
+    return make_error(ErrorCode::invalid_argument,
+                      "make_icosphere needs 0 <= subdivisions <= 10, "
+                      "got ",
                       subdivisions);
   Result<PolygonSoup<T>> base = make_icosahedron(radius);
   if (!base) return base;
@@ -166,7 +167,8 @@ Result<PolygonSoup<T>> make_torus(T major, T minor, int segments_major = 48,
     for (Index j = 0; j < nv; ++j) {
       const double w = two_pi * j / nv;
       const double rr = double(major) + double(minor) * std::cos(w);
-      m.add_vertex(Vec3<T>{T(rr * std::cos(u)), T(rr * std::sin(u)), T(double(minor) * std::sin(w))});
+      m.add_vertex(
+          Vec3<T>{T(rr * std::cos(u)), T(rr * std::sin(u)), T(double(minor) * std::sin(w))});
     }
   }
   auto id = [&](Index i, Index j) { return (i % nu) * nv + (j % nv); };

@@ -25,9 +25,8 @@ template <class T> std::vector<Vec3<T>> face_unit_normals(const PolygonSoup<T>& 
   std::vector<Vec3<T>> n(soup.face_count());
   for (std::size_t f = 0; f < soup.face_count(); ++f) {
     const Index* c = soup.indices.data() + soup.offsets[f];
-    n[f] = normalized(newell_normal<T>(soup.face_size(f), [&](std::size_t i) -> const Vec3<T>& {
-      return soup.vertices[c[i]];
-    }));
+    n[f] = normalized(newell_normal<T>(
+        soup.face_size(f), [&](std::size_t i) -> const Vec3<T>& { return soup.vertices[c[i]]; }));
   }
   return n;
 }

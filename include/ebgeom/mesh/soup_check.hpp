@@ -20,8 +20,8 @@ template <class T> Error check_soup(const PolygonSoup<T>& soup) {
   if (soup.offsets.empty() || soup.offsets.front() != 0)
     return make_error(ErrorCode::size_mismatch, "polygon soup offsets must start with 0");
   if (soup.offsets.back() != soup.indices.size())
-    return make_error(ErrorCode::size_mismatch, "polygon soup offsets end at ",
-                      soup.offsets.back(), " but there are ", soup.indices.size(), " indices");
+    return make_error(ErrorCode::size_mismatch, "polygon soup offsets end at ", soup.offsets.back(),
+                      " but there are ", soup.indices.size(), " indices");
   if (soup.offsets.size() < 2) return make_error(ErrorCode::empty, "polygon soup has no faces");
   for (std::size_t f = 0; f + 1 < soup.offsets.size(); ++f) {
     if (soup.offsets[f + 1] < soup.offsets[f])

@@ -85,12 +85,11 @@ TYPED_TEST(ClosestPointTriangleTest, MatchesBarycentricReferenceOnRandomTriangle
         c{T(u(rng)), T(u(rng)), T(u(rng))};
     for (const auto& p : test::random_points(Aabb<T>::of({-2, -2, -2}, {2, 2, 2}), 30, trial)) {
       const auto r = closest_point_triangle(p, a, b, c);
-      const Ref ref = reference(Vec3<double>::from(p), Vec3<double>::from(a),
-                                Vec3<double>::from(b), Vec3<double>::from(c));
+      const Ref ref = reference(Vec3<double>::from(p), Vec3<double>::from(a), Vec3<double>::from(b),
+                                Vec3<double>::from(c));
       const double scale = 1 + ref.d2;
       EXPECT_NEAR(double(r.distance2), ref.d2, 50 * double(test::tol<T>()) * scale);
-      EXPECT_NEAR(norm(Vec3<double>::from(r.point) - ref.point), 0,
-                  sizeof(T) == 4 ? 2e-3 : 1e-8);
+      EXPECT_NEAR(norm(Vec3<double>::from(r.point) - ref.point), 0, sizeof(T) == 4 ? 2e-3 : 1e-8);
       // the reported point really is on the reported feature
       const Vec3<T> v[3] = {a, b, c};
       if (is_vertex(r.feature)) {
@@ -124,13 +123,13 @@ TYPED_TEST(ClosestPointTriangleTest, AgreesWithDenseSampling) {
     for (int i = 0; i <= n; ++i)
       for (int j = 0; i + j <= n; ++j) {
         const double s = double(i) / n, t = double(j) / n;
-        const Vec3<double> q = Vec3<double>::from(a) + Vec3<double>::from(b - a) * s +
-                               Vec3<double>::from(c - a) * t;
+        const Vec3<double> q =
+            Vec3<double>::from(a) + Vec3<double>::from(b - a) * s + Vec3<double>::from(c - a) * t;
         best = std::min(best, norm(Vec3<double>::from(p) - q));
       }
     const double d = std::sqrt(double(closest_point_triangle(p, a, b, c).distance2));
-    EXPECT_LE(d, best + 1e-5);           // never farther than any sample
-    EXPECT_GE(d, best - h / n - 1e-5);   // samples are at most h/n from every surface point
+    EXPECT_LE(d, best + 1e-5);         // never farther than any sample
+    EXPECT_GE(d, best - h / n - 1e-5); // samples are at most h/n from every surface point
   }
 }
 
@@ -140,17 +139,17 @@ TYPED_TEST(ClosestPointTriangleTest, DegenerateTrianglesAreFinite) {
   for (const auto& p : test::random_points(Aabb<T>::of({-2, -2, -2}, {3, 2, 2}), 200, 9)) {
     const auto r = closest_point_triangle(p, a, b, c);
     ASSERT_TRUE(all_finite(r.point));
-    const Vec3<double> q = ref_segment(Vec3<double>::from(p), Vec3<double>::from(a),
-                                       Vec3<double>::from(c));
+    const Vec3<double> q =
+        ref_segment(Vec3<double>::from(p), Vec3<double>::from(a), Vec3<double>::from(c));
     EXPECT_NEAR(double(r.distance2), norm2(Vec3<double>::from(p) - q), 10 * test::tol<T>());
     EXPECT_NE(r.feature, TriangleFeature::face);
     // repeated vertex and a single point
     const auto r2 = closest_point_triangle(p, a, a, b);
-    EXPECT_NEAR(double(r2.distance2),
-                norm2(Vec3<double>::from(p) - ref_segment(Vec3<double>::from(p),
-                                                          Vec3<double>::from(a),
-                                                          Vec3<double>::from(b))),
-                10 * test::tol<T>());
+    EXPECT_NEAR(
+        double(r2.distance2),
+        norm2(Vec3<double>::from(p) -
+              ref_segment(Vec3<double>::from(p), Vec3<double>::from(a), Vec3<double>::from(b))),
+        10 * test::tol<T>());
     const auto r3 = closest_point_triangle(p, b, b, b);
     EXPECT_EQ(r3.point, b);
     EXPECT_TRUE(is_vertex(r3.feature));
@@ -167,8 +166,8 @@ TYPED_TEST(ClosestPointTriangleTest, SignFollowsTheFeatureNormal) {
   auto sd = [&](const Vec3<T>& p) { return signed_distance_triangle(p, a, b, c, fn, en, vn); };
   EXPECT_NEAR(sd({T(0.2), T(0.2), T(2)}).distance, T(2), test::tol<T>());
   EXPECT_NEAR(sd({T(0.2), T(0.2), T(-2)}).distance, T(-2), test::tol<T>());
-  EXPECT_NEAR(sd({T(0.5), T(-1), T(0)}).distance, T(1), test::tol<T>());   // along en[0]
-  EXPECT_NEAR(sd({T(-1), T(0.5), T(0)}).distance, T(1), test::tol<T>());   // along en[2]
+  EXPECT_NEAR(sd({T(0.5), T(-1), T(0)}).distance, T(1), test::tol<T>()); // along en[0]
+  EXPECT_NEAR(sd({T(-1), T(0.5), T(0)}).distance, T(1), test::tol<T>()); // along en[2]
   // vertex0 with normal -z: a point above it (outside the face region) is "inside"
   const auto v0 = sd({T(-1), T(-1), T(1)});
   EXPECT_EQ(v0.feature, TriangleFeature::vertex0);

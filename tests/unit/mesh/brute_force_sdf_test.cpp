@@ -12,7 +12,9 @@ template <class T> class BruteForceMeshSdfTest : public ::testing::Test {};
 TYPED_TEST_SUITE(BruteForceMeshSdfTest, test::FloatTypes);
 
 namespace {
-template <class T> double tolerance(double d) { return (sizeof(T) == 4 ? 2e-5 : 1e-12) * (4 + std::abs(d)); }
+template <class T> double tolerance(double d) {
+  return (sizeof(T) == 4 ? 2e-5 : 1e-12) * (4 + std::abs(d));
+}
 template <class T> Vec3<double> dbl(const Vec3<T>& p) { return Vec3<double>::from(p); }
 } // namespace
 
@@ -53,8 +55,8 @@ TYPED_TEST(BruteForceMeshSdfTest, CubeEdgeVertexAndSurfacePoints) {
   // Inside, near a corner: the closest faces tie; distance is to the nearest face.
   EXPECT_NEAR(double(sdf({T(0.9), T(0.95), T(0.97)})), -0.03, tolerance<T>(1));
   // Surface points: vertices, edge midpoints, face centres give 0.
-  for (const Vec3<T>& p : {Vec3<T>{1, 1, 1}, Vec3<T>{1, -1, 0}, Vec3<T>{0, 0, -1},
-                           Vec3<T>{T(0.3), 1, T(-0.2)}})
+  for (const Vec3<T>& p :
+       {Vec3<T>{1, 1, 1}, Vec3<T>{1, -1, 0}, Vec3<T>{0, 0, -1}, Vec3<T>{T(0.3), 1, T(-0.2)}})
     EXPECT_NEAR(double(sdf(p)), 0.0, tolerance<T>(1)) << p;
 }
 

@@ -33,8 +33,8 @@ inline double ref_triangle_distance(const Vec3<double>& p, const Vec3<double>& a
     if (s >= 0 && t >= 0 && s + t <= 1) return norm(p - (a + e0 * s + e1 * t));
   }
   double d = std::numeric_limits<double>::infinity();
-  for (const auto& q : {ref_segment_point(p, a, b), ref_segment_point(p, b, c),
-                        ref_segment_point(p, c, a)})
+  for (const auto& q :
+       {ref_segment_point(p, a, b), ref_segment_point(p, b, c), ref_segment_point(p, c, a)})
     d = std::min(d, norm(p - q));
   return d;
 }
@@ -57,9 +57,9 @@ template <class T> double ref_winding_number(const PolygonSoup<T>& s, const Vec3
   for (std::size_t f = 0; f < s.face_count(); ++f) {
     const auto c = s.face(f);
     for (std::size_t i = 1; i + 1 < c.size(); ++i)
-      w += solid_angle(p, Vec3<double>::from(s.vertices[c[0]]),
-                       Vec3<double>::from(s.vertices[c[i]]),
-                       Vec3<double>::from(s.vertices[c[i + 1]]));
+      w +=
+          solid_angle(p, Vec3<double>::from(s.vertices[c[0]]), Vec3<double>::from(s.vertices[c[i]]),
+                      Vec3<double>::from(s.vertices[c[i + 1]]));
   }
   return w / (4 * 3.14159265358979323846);
 }
@@ -100,7 +100,7 @@ template <class T> PolygonSoup<T> l_prism() {
   PolygonSoup<T> s;
   for (int z = 0; z < 2; ++z)
     for (const auto& v : xy) s.add_vertex({T(v[0]), T(v[1]), T(z)});
-  s.add_face({0, 5, 4, 3, 2, 1}); // bottom, normal -z (fan from (0,0) stays inside the L)
+  s.add_face({0, 5, 4, 3, 2, 1});   // bottom, normal -z (fan from (0,0) stays inside the L)
   s.add_face({6, 7, 8, 9, 10, 11}); // top, normal +z
   for (Index i = 0; i < 6; ++i) {
     const Index j = (i + 1) % 6;

@@ -61,9 +61,9 @@ TYPED_TEST(TriangleMeshTest, VertexPseudonormalIsAngleWeighted) {
   const auto m = make_triangle_mesh(s).value();
   EXPECT_NEAR(norm(m.vertex_normals[0] - normalized(Vec3<T>{-1, -1, -1})), T(0), test::tol<T>());
   const double pi = 3.14159265358979323846;
-  const Vec3<double> expect = normalized(Vec3<double>{0, 0, -1} * (pi / 4) +
-                                         Vec3<double>{0, -1, 0} * (pi / 4) +
-                                         normalized(Vec3<double>{1, 1, 1}) * (pi / 3));
+  const Vec3<double> expect =
+      normalized(Vec3<double>{0, 0, -1} * (pi / 4) + Vec3<double>{0, -1, 0} * (pi / 4) +
+                 normalized(Vec3<double>{1, 1, 1}) * (pi / 3));
   // angle at (1,0,0) in the z = 0 face (0,2,1): between (0,0,0) and (0,1,0): pi/4; same in y = 0.
   EXPECT_NEAR(norm(Vec3<double>::from(m.vertex_normals[1]) - expect), 0.0, 1e-5);
 }
