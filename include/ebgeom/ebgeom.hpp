@@ -5,6 +5,7 @@
 #include "ebgeom/core.hpp"
 #include "ebgeom/eval.hpp"
 #include "ebgeom/geom.hpp"
+#include "ebgeom/io.hpp"
 #include "ebgeom/mesh.hpp"
 #include "ebgeom/octree.hpp"
 #include "ebgeom/sdf/brute_force_dcel_sdf.hpp"

@@ -1,0 +1,15 @@
+#pragma once
+/// \file
+/// Module umbrella: mesh readers (STL, PLY, OBJ, legacy VTK) with format detection, and writers.
+
+#include "ebgeom/io/byte_reader.hpp"
+#include "ebgeom/io/obj.hpp"
+#include "ebgeom/io/parse_error.hpp"
+#include "ebgeom/io/ply.hpp"
+#include "ebgeom/io/read_mesh.hpp"
+#include "ebgeom/io/read_options.hpp"
+#include "ebgeom/io/scalar_type.hpp"
+#include "ebgeom/io/stl.hpp"
+#include "ebgeom/io/text_reader.hpp"
+#include "ebgeom/io/vtk.hpp"
+#include "ebgeom/io/write_mesh.hpp"

@@ -1,0 +1,87 @@
+#pragma once
+/// \file
+/// Internal: welding of bit-identical vertices while a reader appends them (STL stores three
+/// vertices per triangle). An open-addressing hash table of vertex indices; no stability promise.
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/mesh/polygon_soup.hpp"
+
+namespace ebgeom::io::detail {
+
+/// Maps coordinates to vertex indices: `insert(p)` returns the index of a vertex equal to `p`
+/// (bitwise, after turning -0 into +0) or appends `p` to `vertices` and returns its new index.
+/// Amortised O(1); the table has at most 50% load.
+template <class T> class ExactWelder {
+ public:
+  explicit ExactWelder(std::vector<Vec3<T>>& vertices, std::size_t expected = 0)
+      : vertices_(&vertices) {
+    std::size_t cap = 64;
+    while (cap < 2 * expected) cap *= 2;
+    slots_.assign(cap, empty);
+    mask_ = cap - 1;
+    for (std::size_t i = 0; i < vertices.size(); ++i) place(Index(i));
+  }
+
+  Index insert(Vec3<T> p) {
+    p.x += T(0); // -0 + 0 == +0: equal values weld whatever their sign bit
+    p.y += T(0);
+    p.z += T(0);
+    std::size_t h = hash(p) & mask_;
+    const Vec3<T>* v = vertices_->data();
+    for (;;) {
+      const Index s = slots_[h];
+      if (s == empty) break;
+      if (same_bits(v[s], p)) return s;
+      h = (h + 1) & mask_;
+    }
+    const Index idx = Index(vertices_->size());
+    vertices_->push_back(p);
+    slots_[h] = idx;
+    if (2 * vertices_->size() > slots_.size()) grow();
+    return idx;
+  }
+
+ private:
+  static constexpr Index empty = std::numeric_limits<Index>::max();
+  using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+
+  static Bits bits(T x) noexcept {
+    Bits b;
+    std::memcpy(&b, &x, sizeof(T));
+    return b;
+  }
+  static bool same_bits(const Vec3<T>& a, const Vec3<T>& b) noexcept {
+    return bits(a.x) == bits(b.x) && bits(a.y) == bits(b.y) && bits(a.z) == bits(b.z);
+  }
+  static std::size_t hash(const Vec3<T>& p) noexcept {
+    std::uint64_t h = std::uint64_t(bits(p.x)) * 0x9E3779B97F4A7C15ull;
+    h ^= std::uint64_t(bits(p.y)) * 0xC2B2AE3D27D4EB4Full;
+    h ^= std::uint64_t(bits(p.z)) * 0x165667B19E3779F9ull;
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 32;
+    return std::size_t(h);
+  }
+  void place(Index i) {
+    std::size_t h = hash((*vertices_)[i]) & mask_;
+    while (slots_[h] != empty) h = (h + 1) & mask_;
+    slots_[h] = i;
+  }
+  void grow() {
+    slots_.assign(slots_.size() * 2, empty);
+    mask_ = slots_.size() - 1;
+    for (std::size_t i = 0; i < vertices_->size(); ++i) place(Index(i));
+  }
+
+  std::vector<Vec3<T>>* vertices_;
+  std::vector<Index> slots_;
+  std::size_t mask_ = 0;
+};
+
+} // namespace ebgeom::io::detail
