@@ -20,7 +20,8 @@ enum class Endian : std::uint8_t { little, big };
 
 namespace detail {
 
-#if defined(__BYTE_ORDER__) && defined(__ORDER_BIG_ENDIAN__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#if defined(__BYTE_ORDER__) && defined(__ORDER_BIG_ENDIAN__) &&                                    \
+    __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
 inline constexpr Endian host_endian = Endian::big;
 #else
 inline constexpr Endian host_endian = Endian::little;
@@ -41,7 +42,8 @@ template <class V> EBGEOM_FORCE_INLINE V load(const char* p, Endian e) noexcept 
   static_assert(std::is_arithmetic_v<V>, "load<V> needs an arithmetic V");
   V v;
   std::memcpy(&v, p, sizeof(V));
-  if (sizeof(V) > 1 && e != host_endian) byte_swap(reinterpret_cast<unsigned char*>(&v), sizeof(V), 1);
+  if (sizeof(V) > 1 && e != host_endian)
+    byte_swap(reinterpret_cast<unsigned char*>(&v), sizeof(V), 1);
   return v;
 }
 
@@ -50,7 +52,8 @@ template <class V> inline void store(std::string& out, V v, Endian e) {
   static_assert(std::is_arithmetic_v<V>, "store<V> needs an arithmetic V");
   char b[sizeof(V)];
   std::memcpy(b, &v, sizeof(V));
-  if (sizeof(V) > 1 && e != host_endian) byte_swap(reinterpret_cast<unsigned char*>(b), sizeof(V), 1);
+  if (sizeof(V) > 1 && e != host_endian)
+    byte_swap(reinterpret_cast<unsigned char*>(b), sizeof(V), 1);
   out.append(b, sizeof(V));
 }
 
@@ -106,7 +109,8 @@ class ByteReader {
     return make_parse_error(code, *path_, base_ + pos_, 0, parts...);
   }
   /// An error at offset `off` of this view.
-  template <class... A> ParseError fail_at(std::size_t off, ErrorCode code, const A&... parts) const {
+  template <class... A>
+  ParseError fail_at(std::size_t off, ErrorCode code, const A&... parts) const {
     return make_parse_error(code, *path_, base_ + off, 0, parts...);
   }
 

@@ -47,8 +47,8 @@ Result<PolygonSoup<T>, ParseError> parse_obj(ByteView bytes, const ReadOptions& 
         const NumberStatus s = in.real_in_line(x[k]);
         if (s != NumberStatus::ok) return in.number_error(s, "a vertex coordinate");
         if (!std::isfinite(x[k]))
-          return in.fail(ErrorCode::non_finite, "vertex coordinate ", detail::quote(in.last_token()),
-                         " is not finite");
+          return in.fail(ErrorCode::non_finite, "vertex coordinate ",
+                         detail::quote(in.last_token()), " is not finite");
       }
       if (soup.vertices.size() >= std::numeric_limits<Index>::max())
         return in.fail(ErrorCode::size_mismatch, "more vertices than the index range holds");
@@ -66,7 +66,8 @@ Result<PolygonSoup<T>, ParseError> parse_obj(ByteView bytes, const ReadOptions& 
         const char* q = in.cur();
         while (!in.is_terminator(q)) {
           if (!((*q >= '0' && *q <= '9') || *q == '/' || *q == '-'))
-            return in.fail(ErrorCode::syntax, "malformed face corner ", detail::quote(in.last_token()));
+            return in.fail(ErrorCode::syntax, "malformed face corner ",
+                           detail::quote(in.last_token()));
           ++q;
         }
         in.set_cur(q);
@@ -75,15 +76,17 @@ Result<PolygonSoup<T>, ParseError> parse_obj(ByteView bytes, const ReadOptions& 
           return in.fail(ErrorCode::bad_index, "vertex index ", v, " refers past the ", nv,
                          " vertices defined so far");
         if (v < 0 && std::uint64_t(-(v + 1)) >= nv)
-          return in.fail(ErrorCode::bad_index, "relative vertex index ", v, " refers before the first of the ",
-                         nv, " vertices defined so far");
+          return in.fail(ErrorCode::bad_index, "relative vertex index ", v,
+                         " refers before the first of the ", nv, " vertices defined so far");
         corners.push_back(Index(v > 0 ? std::uint64_t(v) - 1 : nv - std::uint64_t(-(v + 1)) - 1));
       }
       if (corners.size() < 3)
-        return in.fail(ErrorCode::degenerate, "face with ", corners.size(), " corners (at least 3 needed)");
+        return in.fail(ErrorCode::degenerate, "face with ", corners.size(),
+                       " corners (at least 3 needed)");
       triangles += corners.size() - 2;
       if (triangles > opt.max_triangles)
-        return in.fail(ErrorCode::size_mismatch, "more than the limit of ", opt.max_triangles, " triangles");
+        return in.fail(ErrorCode::size_mismatch, "more than the limit of ", opt.max_triangles,
+                       " triangles");
       if (soup.indices.size() + corners.size() >= std::numeric_limits<Index>::max())
         return in.fail(ErrorCode::size_mismatch, "more face corners than the index range holds");
       soup.add_face(corners);
@@ -95,6 +98,7 @@ Result<PolygonSoup<T>, ParseError> parse_obj(ByteView bytes, const ReadOptions& 
       in.skip_line(); // vt, vn, g, o, s, usemtl, mtllib, l, p and unknown statements
     }
   }
+  in.mark(); // at the end
   if (soup.face_count() == 0) return in.fail(ErrorCode::empty, "OBJ file without faces");
   return soup;
 }

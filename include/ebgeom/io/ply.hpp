@@ -14,8 +14,8 @@
 #include "ebgeom/io/byte_reader.hpp"
 #include "ebgeom/io/detail/scalar_source.hpp"
 #include "ebgeom/io/detail/strip.hpp"
-#include "ebgeom/io/scalar_type.hpp"
 #include "ebgeom/io/read_options.hpp"
+#include "ebgeom/io/scalar_type.hpp"
 #include "ebgeom/io/text_reader.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 
@@ -59,11 +59,11 @@ inline PlyType ply_type_from_name(std::string_view s) noexcept {
     PlyType t;
   };
   static const Entry table[] = {
-      {"char", "int8", PlyType::i8},       {"uchar", "uint8", PlyType::u8},
-      {"short", "int16", PlyType::i16},    {"ushort", "uint16", PlyType::u16},
-      {"int", "int32", PlyType::i32},      {"uint", "uint32", PlyType::u32},
-      {"float", "float32", PlyType::f32},  {"double", "float64", PlyType::f64},
-      {"int64", "long", PlyType::i64},     {"uint64", "ulong", PlyType::u64}};
+      {"char", "int8", PlyType::i8},      {"uchar", "uint8", PlyType::u8},
+      {"short", "int16", PlyType::i16},   {"ushort", "uint16", PlyType::u16},
+      {"int", "int32", PlyType::i32},     {"uint", "uint32", PlyType::u32},
+      {"float", "float32", PlyType::f32}, {"double", "float64", PlyType::f64},
+      {"int64", "long", PlyType::i64},    {"uint64", "ulong", PlyType::u64}};
   for (const Entry& e : table)
     if (s == e.a || s == e.b) return e.t;
   return PlyType::none;
@@ -141,7 +141,9 @@ template <class T, class Src> class PlyBody {
         if (!src_->integer(list.count_type, c))
           return err = src_->error("the vertex count of ", el.name, " ", r), false;
         if (c < 0)
-          return err = src_->fail(ErrorCode::bad_number, el.name, " ", r, " has a negative count ", c), false;
+          return err = src_->fail(ErrorCode::bad_number, el.name, " ", r, " has a negative count ",
+                                  c),
+                 false;
         if (!strips && c < 3)
           return err = src_->fail(ErrorCode::degenerate, "face ", r, " has ", c,
                                   " vertices (at least 3 needed)"),
@@ -182,12 +184,15 @@ template <class T, class Src> class PlyBody {
       return true;
     }
     std::int64_t c = 0;
-    if (!src_->integer(pr.count_type, c)) return err = src_->error("the count of list '", pr.name, "'"), false;
+    if (!src_->integer(pr.count_type, c))
+      return err = src_->error("the count of list '", pr.name, "'"), false;
     if (c < 0)
-      return err = src_->fail(ErrorCode::bad_number, "negative list count ", c, " in '", pr.name, "'"),
+      return err = src_->fail(ErrorCode::bad_number, "negative list count ", c, " in '", pr.name,
+                              "'"),
              false;
     for (std::int64_t k = 0; k < c; ++k)
-      if (!src_->skip(pr.type)) return err = src_->error("item ", k, " of list '", pr.name, "'"), false;
+      if (!src_->skip(pr.type))
+        return err = src_->error("item ", k, " of list '", pr.name, "'"), false;
     return true;
   }
   bool count_triangles(std::uint64_t n, ParseError& err) {
@@ -219,10 +224,13 @@ inline Result<PlyHeader, ParseError> parse_ply_header(ByteView bytes, const Read
   TextReader in(bytes, opt.path);
   if (in.at_end()) return in.fail(ErrorCode::empty, "empty PLY file");
   const std::string_view magic = in.rest_of_line();
-  if (magic != "ply") return in.fail(ErrorCode::bad_magic, "expected 'ply' on the first line, found ", detail::quote(magic));
+  if (magic != "ply")
+    return in.fail(ErrorCode::bad_magic, "expected 'ply' on the first line, found ",
+                   detail::quote(magic));
   PlyHeader h;
   bool have_format = false;
   for (;;) {
+    in.mark();
     if (in.at_end()) return in.fail(ErrorCode::truncated, "input ends before 'end_header'");
     const std::string_view kw = in.token_in_line();
     if (kw.empty()) {
@@ -260,7 +268,8 @@ inline Result<PlyHeader, ParseError> parse_ply_header(ByteView bytes, const Read
       if (el.name.empty()) return in.fail(ErrorCode::syntax, "element without a name");
       for (const PlyElement& e : h.elements)
         if (e.name == el.name)
-          return in.fail(ErrorCode::syntax, "duplicate element '", el.name, "' (first on line ", e.line, ")");
+          return in.fail(ErrorCode::syntax, "duplicate element '", el.name, "' (first on line ",
+                         e.line, ")");
       const NumberStatus s = in.integer_in_line(el.count);
       if (s != NumberStatus::ok) return in.number_error(s, "the count of element '", el.name, "'");
       if (!in.at_eol()) return in.fail(ErrorCode::syntax, "text after the element count");
@@ -278,16 +287,19 @@ inline Result<PlyHeader, ParseError> parse_ply_header(ByteView bytes, const Read
         if (p.count_type == PlyType::none)
           return in.fail(ErrorCode::unsupported, "unknown list count type ", detail::quote(ct));
         if (!is_integer(p.count_type))
-          return in.fail(ErrorCode::unsupported, "list count type ", detail::quote(ct), " is not an integer type");
+          return in.fail(ErrorCode::unsupported, "list count type ", detail::quote(ct),
+                         " is not an integer type");
         t = in.token_in_line();
       }
       p.type = detail::ply_type_from_name(t);
-      if (p.type == PlyType::none) return in.fail(ErrorCode::unsupported, "unknown property type ", detail::quote(t));
+      if (p.type == PlyType::none)
+        return in.fail(ErrorCode::unsupported, "unknown property type ", detail::quote(t));
       p.name = std::string(in.token_in_line());
       if (p.name.empty()) return in.fail(ErrorCode::syntax, "property without a name");
       PlyElement& el = h.elements.back();
       if (detail::ply_find(el, p.name) >= 0)
-        return in.fail(ErrorCode::syntax, "duplicate property '", p.name, "' in element '", el.name, "'");
+        return in.fail(ErrorCode::syntax, "duplicate property '", p.name, "' in element '", el.name,
+                       "'");
       el.properties.push_back(std::move(p));
       in.skip_line();
       continue;
@@ -327,24 +339,27 @@ Result<PolygonSoup<T>, ParseError> parse_ply(ByteView bytes, const ReadOptions& 
     for (const PlyProperty& p : el.properties)
       rec += ascii ? 2 : scalar_size(p.is_list() ? p.count_type : p.type);
     if (rec > 0 && el.count > (avail + 1 - need) / rec + 0)
-      return header_error(el, ErrorCode::size_mismatch, "element '", el.name, "' declares ", el.count,
-                          " entries (at least ", rec, " bytes each) but only ", avail - std::min(avail, need),
-                          " bytes of data remain");
+      return header_error(el, ErrorCode::size_mismatch, "element '", el.name, "' declares ",
+                          el.count, " entries (at least ", rec, " bytes each) but only ",
+                          avail - std::min(avail, need), " bytes of data remain");
     need += el.count * rec;
     if (el.name == "vertex") {
       vert = &el;
       for (const char* c : {"x", "y", "z"}) {
         const int i = detail::ply_find(el, c);
-        if (i < 0) return header_error(el, ErrorCode::syntax, "element 'vertex' has no property '", c, "'");
+        if (i < 0)
+          return header_error(el, ErrorCode::syntax, "element 'vertex' has no property '", c, "'");
         if (el.properties[std::size_t(i)].is_list())
           return header_error(el, ErrorCode::syntax, "vertex property '", c, "' is a list");
       }
       if (el.count >= std::numeric_limits<Index>::max())
-        return header_error(el, ErrorCode::size_mismatch, el.count, " vertices exceed the index range");
+        return header_error(el, ErrorCode::size_mismatch, el.count,
+                            " vertices exceed the index range");
     } else if (el.name == "face" || el.name == "tristrips") {
       const int il = detail::ply_index_list(el);
       if (il < 0)
-        return header_error(el, ErrorCode::syntax, "element '", el.name, "' has no vertex index list");
+        return header_error(el, ErrorCode::syntax, "element '", el.name,
+                            "' has no vertex index list");
       if (!is_integer(el.properties[std::size_t(il)].type))
         return header_error(el, ErrorCode::unsupported, "vertex indices of '", el.name,
                             "' are not of an integer type");
@@ -356,7 +371,9 @@ Result<PolygonSoup<T>, ParseError> parse_ply(ByteView bytes, const ReadOptions& 
       }
     }
   }
-  if (!vert) return make_parse_error(ErrorCode::syntax, opt.path, 0, 0, "PLY header has no 'vertex' element");
+  if (!vert)
+    return make_parse_error(ErrorCode::syntax, opt.path, 0, 0,
+                            "PLY header has no 'vertex' element");
 
   PolygonSoup<T> soup;
   soup.reserve(vert->count, face_count, face_count * 3);
@@ -387,7 +404,7 @@ Result<PolygonSoup<T>, ParseError> parse_ply(ByteView bytes, const ReadOptions& 
     ByteReader in(bytes, opt.path);
     in.seek(h.data_offset);
     detail::BinarySource src(in, h.encoding == PlyEncoding::binary_little_endian ? Endian::little
-                                                                                   : Endian::big);
+                                                                                 : Endian::big);
     if (!body(src)) return err;
   }
   if (soup.face_count() == 0)

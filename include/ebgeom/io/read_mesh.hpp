@@ -28,7 +28,8 @@ struct FileBytes {
 
 /// Reads the file `path` into memory. Errors: `io` (cannot open or read), `size_mismatch` (larger
 /// than `opt.max_bytes`, checked before allocating). The error's path is `path`.
-inline Result<FileBytes, ParseError> read_file(const std::string& path, const ReadOptions& opt = {}) {
+inline Result<FileBytes, ParseError> read_file(const std::string& path,
+                                               const ReadOptions& opt = {}) {
   std::ifstream f(path, std::ios::binary | std::ios::ate);
   if (!f) return make_parse_error(ErrorCode::io, path, 0, 0, "cannot open the file");
   const std::streamoff end = f.tellg();
@@ -41,7 +42,8 @@ inline Result<FileBytes, ParseError> read_file(const std::string& path, const Re
   out.data.reset(new char[out.size > 0 ? out.size : 1]);
   f.seekg(0);
   if (out.size > 0 && !f.read(out.data.get(), std::streamsize(out.size)))
-    return make_parse_error(ErrorCode::io, path, 0, 0, "cannot read the file's ", out.size, " bytes");
+    return make_parse_error(ErrorCode::io, path, 0, 0, "cannot read the file's ", out.size,
+                            " bytes");
   return out;
 }
 
@@ -50,7 +52,8 @@ namespace detail {
 inline MeshFormat format_from_extension(const std::string& path) noexcept {
   const std::size_t dot = path.find_last_of('.');
   const std::size_t slash = path.find_last_of("/\\");
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return MeshFormat::unknown;
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+    return MeshFormat::unknown;
   const std::string_view ext = std::string_view(path).substr(dot + 1);
   if (iequals(ext, "stl")) return MeshFormat::stl;
   if (iequals(ext, "ply")) return MeshFormat::ply;
@@ -62,8 +65,8 @@ inline MeshFormat format_from_extension(const std::string& path) noexcept {
 /// Does the first statement (skipping blank and `#` lines in the first 64 KiB) start with an OBJ
 /// keyword?
 inline bool looks_like_obj(std::string_view t) noexcept {
-  static const char* const keywords[] = {"v",  "vt", "vn",     "vp",     "f", "o", "g",
-                                         "s",  "l",  "usemtl", "mtllib", "p"};
+  static const char* const keywords[] = {"v", "vt", "vn", "vp",     "f",      "o",
+                                         "g", "s",  "l",  "usemtl", "mtllib", "p"};
   std::size_t i = 0;
   const std::size_t n = t.size() < 65536 ? t.size() : 65536;
   while (i < n) {
@@ -101,7 +104,8 @@ inline MeshFormat detect_format(ByteView bytes, const std::string& path = {}) no
   if (t.size() >= 3 && (unsigned char)t[0] == 0xEF && (unsigned char)t[1] == 0xBB &&
       (unsigned char)t[2] == 0xBF)
     t.remove_prefix(3);
-  if (t.size() >= 4 && t.substr(0, 3) == "ply" && (t[3] == '\n' || t[3] == '\r')) return MeshFormat::ply;
+  if (t.size() >= 4 && t.substr(0, 3) == "ply" && (t[3] == '\n' || t[3] == '\r'))
+    return MeshFormat::ply;
   if (t.size() >= 5 && detail::iequals(t.substr(0, 5), "# vtk")) return MeshFormat::vtk;
   if (detail::starts_with_solid(t)) return MeshFormat::stl;
   if (detail::looks_like_obj(t)) return MeshFormat::obj;
@@ -117,7 +121,8 @@ inline MeshFormat detect_format(ByteView bytes, const std::string& path = {}) no
 template <class T>
 Result<PolygonSoup<T>, ParseError> parse_mesh(ByteView bytes, const ReadOptions& opt = {}) {
   if (bytes.empty()) return make_parse_error(ErrorCode::empty, opt.path, 0, 0, "empty input");
-  const MeshFormat f = opt.format != MeshFormat::unknown ? opt.format : detect_format(bytes, opt.path);
+  const MeshFormat f =
+      opt.format != MeshFormat::unknown ? opt.format : detect_format(bytes, opt.path);
   switch (f) {
   case MeshFormat::stl:
     return parse_stl<T>(bytes, opt);

@@ -64,8 +64,9 @@ Result<PolygonSoup<T>, ParseError> parse_stl_binary(ByteView bytes, const ReadOp
   ByteReader in(bytes, opt.path);
   std::uint32_t n = 0;
   if (!in.skip(80) || !in.read_le(n))
-    return in.fail(ErrorCode::truncated, "binary STL needs an 80-byte header and a uint32 count (",
-                   bytes.size(), " bytes)");
+    return in.fail_at(bytes.size(), ErrorCode::truncated,
+                      "binary STL needs an 80-byte header and a uint32 count (", bytes.size(),
+                      " bytes)");
   const std::uint64_t need = std::uint64_t(n) * 50; // trailing bytes are tolerated
   if (n > opt.max_triangles)
     return in.fail_at(80, ErrorCode::size_mismatch, "header declares ", n,
@@ -122,15 +123,18 @@ Result<PolygonSoup<T>, ParseError> parse_stl_ascii(ByteView bytes, const ReadOpt
     in.rest_of_line(); // the solid's name
     for (;;) {
       std::string_view kw = in.token();
-      if (kw.empty()) return in.fail(ErrorCode::truncated, "input ends inside a solid (no 'endsolid')");
+      if (kw.empty())
+        return in.fail(ErrorCode::truncated, "input ends inside a solid (no 'endsolid')");
       if (iequals(kw, "endsolid")) {
         in.rest_of_line();
         break;
       }
       if (!iequals(kw, "facet"))
-        return in.fail(ErrorCode::syntax, "expected 'facet' or 'endsolid', found ", detail::quote(kw));
+        return in.fail(ErrorCode::syntax, "expected 'facet' or 'endsolid', found ",
+                       detail::quote(kw));
       if (!expect("normal"))
-        return in.fail(ErrorCode::syntax, "expected 'normal', found ", detail::quote(in.last_token()));
+        return in.fail(ErrorCode::syntax, "expected 'normal', found ",
+                       detail::quote(in.last_token()));
       for (int k = 0; k < 3; ++k) {
         double nk; // normals are ignored; NaN normals (common in the wild) are accepted
         const NumberStatus s = in.real(nk);
@@ -138,9 +142,11 @@ Result<PolygonSoup<T>, ParseError> parse_stl_ascii(ByteView bytes, const ReadOpt
           return in.number_error(s, "a normal component");
       }
       if (!expect("outer"))
-        return in.fail(ErrorCode::syntax, "expected 'outer loop', found ", detail::quote(in.last_token()));
+        return in.fail(ErrorCode::syntax, "expected 'outer loop', found ",
+                       detail::quote(in.last_token()));
       if (!expect("loop"))
-        return in.fail(ErrorCode::syntax, "expected 'loop', found ", detail::quote(in.last_token()));
+        return in.fail(ErrorCode::syntax, "expected 'loop', found ",
+                       detail::quote(in.last_token()));
       corners.clear();
       const std::uint64_t facet_line = in.line();
       for (;;) {
@@ -148,15 +154,16 @@ Result<PolygonSoup<T>, ParseError> parse_stl_ascii(ByteView bytes, const ReadOpt
         if (iequals(kw, "endloop")) break;
         if (!iequals(kw, "vertex")) {
           if (kw.empty()) return in.fail(ErrorCode::truncated, "input ends inside a facet");
-          return in.fail(ErrorCode::syntax, "expected 'vertex' or 'endloop', found ", detail::quote(kw));
+          return in.fail(ErrorCode::syntax, "expected 'vertex' or 'endloop', found ",
+                         detail::quote(kw));
         }
         T x[3];
         for (int k = 0; k < 3; ++k) {
           const NumberStatus s = in.real(x[k]);
           if (s != NumberStatus::ok) return in.number_error(s, "a vertex coordinate");
           if (!std::isfinite(x[k]))
-            return in.fail(ErrorCode::non_finite, "vertex coordinate ", detail::quote(in.last_token()),
-                           " is not finite");
+            return in.fail(ErrorCode::non_finite, "vertex coordinate ",
+                           detail::quote(in.last_token()), " is not finite");
         }
         corners.push_back(sink.add(Vec3<T>{x[0], x[1], x[2]}));
       }
@@ -169,9 +176,11 @@ Result<PolygonSoup<T>, ParseError> parse_stl_ascii(ByteView bytes, const ReadOpt
                        " triangles");
       soup.add_face(corners);
       if (!expect("endfacet"))
-        return in.fail(ErrorCode::syntax, "expected 'endfacet', found ", detail::quote(in.last_token()));
+        return in.fail(ErrorCode::syntax, "expected 'endfacet', found ",
+                       detail::quote(in.last_token()));
     }
   }
+  in.mark(); // at the end
   if (soup.face_count() == 0) return in.fail(ErrorCode::empty, "STL file without facets");
   return soup;
 }
@@ -182,7 +191,8 @@ Result<PolygonSoup<T>, ParseError> parse_stl_ascii(ByteView bytes, const ReadOpt
 template <class T>
 Result<PolygonSoup<T>, ParseError> parse_stl(ByteView bytes, const ReadOptions& opt) {
   if (bytes.empty()) return make_parse_error(ErrorCode::empty, opt.path, 0, 0, "empty STL file");
-  if (!is_binary_stl(bytes) && detail::starts_with_solid(bytes)) return parse_stl_ascii<T>(bytes, opt);
+  if (!is_binary_stl(bytes) && detail::starts_with_solid(bytes))
+    return parse_stl_ascii<T>(bytes, opt);
   return parse_stl_binary<T>(bytes, opt);
 }
 

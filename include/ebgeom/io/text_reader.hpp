@@ -133,7 +133,8 @@ class TextReader {
   }
   /// True when `p` ends a token: the end, a blank, a line break or a continuation.
   bool is_terminator(const char* p) const noexcept {
-    return p == end_ || detail::is_space(*p) || (opt_.line_continuation && *p == '\\' && continuation_at(p));
+    return p == end_ || detail::is_space(*p) ||
+           (opt_.line_continuation && *p == '\\' && continuation_at(p));
   }
   /// Next token on the current line (empty at the end of the line).
   std::string_view token_in_line() noexcept {
@@ -221,7 +222,8 @@ class TextReader {
       return at_end() ? fail(ErrorCode::truncated, "input ends where ", what..., " was expected")
                       : fail(ErrorCode::syntax, "line ends where ", what..., " was expected");
     case NumberStatus::out_of_range:
-      return fail(ErrorCode::bad_number, what..., " is out of range: ", detail::quote(last_token()));
+      return fail(ErrorCode::bad_number, what...,
+                  " is out of range: ", detail::quote(last_token()));
     default:
       return fail(ErrorCode::bad_number, "expected ", what..., ", found ",
                   detail::quote(last_token()));

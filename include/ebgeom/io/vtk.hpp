@@ -62,8 +62,10 @@ Result<PolygonSoup<T>, ParseError> parse_vtk(ByteView bytes, const ReadOptions& 
   if (in.at_end()) return in.fail(ErrorCode::empty, "empty VTK file");
   const std::string_view first = in.rest_of_line();
   if (first.size() < 5 || !iequals(first.substr(0, 5), "# vtk"))
-    return in.fail(ErrorCode::bad_magic, "expected '# vtk DataFile Version ...' on the first line, found ",
+    return in.fail(ErrorCode::bad_magic,
+                   "expected '# vtk DataFile Version ...' on the first line, found ",
                    detail::quote(first));
+  in.mark();
   if (in.at_end()) return in.fail(ErrorCode::truncated, "input ends before the title line");
   in.rest_of_line(); // title
   const std::string_view enc = in.token();
@@ -117,7 +119,10 @@ Result<PolygonSoup<T>, ParseError> parse_vtk(ByteView bytes, const ReadOptions& 
   auto read_type = [&](ScalarType& t) -> bool {
     const std::string_view name = in.token_in_line();
     t = detail::vtk_type_from_name(name);
-    if (t == ScalarType::none) return err = fail_kw(ErrorCode::unsupported, "VTK data type ", detail::quote(name), " is not supported"), false;
+    if (t == ScalarType::none)
+      return err = fail_kw(ErrorCode::unsupported, "VTK data type ", detail::quote(name),
+                           " is not supported"),
+             false;
     return true;
   };
   // One cell's corners are in `corners`: appends a polygon or a strip.
@@ -135,7 +140,9 @@ Result<PolygonSoup<T>, ParseError> parse_vtk(ByteView bytes, const ReadOptions& 
     }
     triangles += added;
     if (triangles > opt.max_triangles)
-      return err = src.fail(ErrorCode::size_mismatch, "more than the limit of ", opt.max_triangles, " triangles"), false;
+      return err = src.fail(ErrorCode::size_mismatch, "more than the limit of ", opt.max_triangles,
+                            " triangles"),
+             false;
     return true;
   };
   auto read_index = [&](auto& src, ScalarType t, std::uint64_t cell) -> bool {
@@ -170,22 +177,31 @@ Result<PolygonSoup<T>, ParseError> parse_vtk(ByteView bytes, const ReadOptions& 
         for (std::uint64_t i = 0; i < n; ++i) {
           T x[3];
           for (int k = 0; k < 3; ++k) {
-            if (!src.real(t, x[k])) return err = src.error("coordinate ", "xyz"[k], " of point ", i), false;
+            if (!src.real(t, x[k]))
+              return err = src.error("coordinate ", "xyz"[k], " of point ", i), false;
             if (!std::isfinite(x[k]))
-              return err = src.fail(ErrorCode::non_finite, "point ", i, " has a NaN or infinite ", "xyz"[k]), false;
+              return err = src.fail(ErrorCode::non_finite, "point ", i, " has a NaN or infinite ",
+                                    "xyz"[k]),
+                     false;
           }
           soup.vertices.push_back(Vec3<T>{x[0], x[1], x[2]});
         }
         return true;
       });
       if (!ok) return err;
-    } else if (iequals(kw, "POLYGONS") || iequals(kw, "TRIANGLE_STRIPS") || iequals(kw, "VERTICES") ||
-               iequals(kw, "LINES")) {
+    } else if (iequals(kw, "POLYGONS") || iequals(kw, "TRIANGLE_STRIPS") ||
+               iequals(kw, "VERTICES") || iequals(kw, "LINES")) {
       const std::string section(kw);
+      const std::size_t sec_off = in.mark_offset();
+      const std::uint64_t sec_line = binary ? 0 : in.line();
+      auto fail_sec = [&](ErrorCode code, const auto&... parts) {
+        return make_parse_error(code, opt.path, sec_off, sec_line, parts...);
+      };
       const bool strips = iequals(kw, "TRIANGLE_STRIPS");
       const bool keep = strips || iequals(kw, "POLYGONS");
       std::uint64_t a = 0, b = 0;
-      if (!read_count(a, "the number of cells") || !read_count(b, "the size of the cell list")) return err;
+      if (!read_count(a, "the number of cells") || !read_count(b, "the size of the cell list"))
+        return err;
       in.skip_line();
       TextReader peek = in;
       if (iequals(in.token(), "OFFSETS")) {
@@ -204,18 +220,22 @@ Result<PolygonSoup<T>, ParseError> parse_vtk(ByteView bytes, const ReadOptions& 
             std::int64_t v = 0;
             if (!src.integer(ot, v)) return err = src.error("offset ", i), false;
             if (v < 0 || std::uint64_t(v) > b || (i == 0 && v != 0) || (i > 0 && v < offs.back()))
-              return err = src.fail(ErrorCode::size_mismatch, "offset ", i, " = ", v,
-                                    " is not a non-decreasing offset in [0, ", b, "] starting at 0"),
+              return err =
+                         src.fail(ErrorCode::size_mismatch, "offset ", i, " = ", v,
+                                  " is not a non-decreasing offset in [0, ", b, "] starting at 0"),
                      false;
             offs.push_back(v);
           }
           if (a > 0 && std::uint64_t(offs.back()) != b)
-            return err = src.fail(ErrorCode::size_mismatch, "the last offset is ", offs.back(), " but CONNECTIVITY has ", b, " values"), false;
+            return err = src.fail(ErrorCode::size_mismatch, "the last offset is ", offs.back(),
+                                  " but CONNECTIVITY has ", b, " values"),
+                   false;
           return true;
         });
         if (!ok) return err;
         if (!iequals(in.token(), "CONNECTIVITY"))
-          return fail_kw(ErrorCode::syntax, "expected 'CONNECTIVITY', found ", detail::quote(in.last_token()));
+          return fail_kw(ErrorCode::syntax, "expected 'CONNECTIVITY', found ",
+                         detail::quote(in.last_token()));
         if (!read_type(ct)) return err;
         in.skip_line();
         const std::uint64_t cper = binary ? scalar_size(ct) : 2;
@@ -245,21 +265,26 @@ Result<PolygonSoup<T>, ParseError> parse_vtk(ByteView bytes, const ReadOptions& 
       if (b > remaining() / per + 1)
         return fail_kw(ErrorCode::size_mismatch, section, " declares ", b, " values but only ",
                        remaining(), " bytes follow");
-      if (a > b) return fail_kw(ErrorCode::size_mismatch, section, " declares ", a, " cells in ", b, " values");
+      if (a > b)
+        return fail_kw(ErrorCode::size_mismatch, section, " declares ", a, " cells in ", b,
+                       " values");
       const bool ok = run([&](auto& src) {
         std::uint64_t used = 0;
         for (std::uint64_t c = 0; c < a; ++c) {
           std::int64_t k = 0;
-          if (!src.integer(ScalarType::i32, k)) return err = src.error("the size of cell ", c), false;
+          if (!src.integer(ScalarType::i32, k))
+            return err = src.error("the size of cell ", c), false;
           if (k < 0 || std::uint64_t(k) + 1 > b - used)
-            return err = src.fail(ErrorCode::size_mismatch, "cell ", c, " declares ", k, " points but only ",
-                                  b - used - (used < b ? 1 : 0), " values of ", section, " remain"),
+            return err = src.fail(ErrorCode::size_mismatch, "cell ", c, " declares ", k,
+                                  " points but only ", b - used - (used < b ? 1 : 0), " values of ",
+                                  section, " remain"),
                    false;
           used += std::uint64_t(k) + 1;
           corners.clear();
           for (std::int64_t j = 0; j < k; ++j) {
             if (!keep) {
-              if (!src.skip(ScalarType::i32)) return err = src.error("a point index of cell ", c), false;
+              if (!src.skip(ScalarType::i32))
+                return err = src.error("a point index of cell ", c), false;
             } else if (!read_index(src, ScalarType::i32, c)) {
               return false;
             }
@@ -267,8 +292,8 @@ Result<PolygonSoup<T>, ParseError> parse_vtk(ByteView bytes, const ReadOptions& 
           if (keep && !emit(strips, c, src)) return false;
         }
         if (used != b)
-          return err = src.fail(ErrorCode::size_mismatch, section, " declares ", b, " values but its ", a,
-                                " cells use ", used),
+          return err = fail_sec(ErrorCode::size_mismatch, section, " declares ", b,
+                                " values but its ", a, " cells use ", used),
                  false;
         return true;
       });
@@ -290,8 +315,8 @@ Result<PolygonSoup<T>, ParseError> parse_vtk(ByteView bytes, const ReadOptions& 
         in.token(); // array name
         std::uint64_t comps = 0, tuples = 0;
         ScalarType t;
-        if (!read_count(comps, "the number of components") || !read_count(tuples, "the number of tuples") ||
-            !read_type(t))
+        if (!read_count(comps, "the number of components") ||
+            !read_count(tuples, "the number of tuples") || !read_type(t))
           return err;
         in.skip_line();
         const std::uint64_t per = binary ? scalar_size(t) : 2;
@@ -313,7 +338,8 @@ Result<PolygonSoup<T>, ParseError> parse_vtk(ByteView bytes, const ReadOptions& 
     }
   }
   if (!have_points) return fail_kw(ErrorCode::empty, "VTK file without POINTS");
-  if (soup.face_count() == 0) return fail_kw(ErrorCode::empty, "VTK file without POLYGONS or TRIANGLE_STRIPS");
+  if (soup.face_count() == 0)
+    return fail_kw(ErrorCode::empty, "VTK file without POLYGONS or TRIANGLE_STRIPS");
   return soup;
 }
 

@@ -38,7 +38,8 @@ template <class V> inline void append_number(std::string& out, V v) {
 template <class T> inline Result<Ok> check_writable(const PolygonSoup<T>& soup) {
   if (soup.face_count() == 0) return make_error(ErrorCode::empty, "mesh without faces");
   for (const Vec3<T>& v : soup.vertices)
-    if (!all_finite(v)) return make_error(ErrorCode::invalid_argument, "mesh has a non-finite vertex");
+    if (!all_finite(v))
+      return make_error(ErrorCode::invalid_argument, "mesh has a non-finite vertex");
   for (std::size_t f = 0; f < soup.face_count(); ++f) {
     if (soup.face_size(f) < 3)
       return make_error(ErrorCode::invalid_argument, "face ", f, " has fewer than 3 vertices");
@@ -89,24 +90,25 @@ template <class T> std::string encode_stl(const PolygonSoup<T>& soup, Encoding e
     append_number(out, v.z);
     out += '\n';
   };
-  each_triangle([&](const Vec3<float>& n, const Vec3<float>& a, const Vec3<float>& b,
-                    const Vec3<float>& d) {
-    out += "facet normal ";
-    vec(n);
-    out += " outer loop\n";
-    for (const Vec3<float>* v : {&a, &b, &d}) {
-      out += "  vertex ";
-      vec(*v);
-    }
-    out += " endloop\nendfacet\n";
-  });
+  each_triangle(
+      [&](const Vec3<float>& n, const Vec3<float>& a, const Vec3<float>& b, const Vec3<float>& d) {
+        out += "facet normal ";
+        vec(n);
+        out += " outer loop\n";
+        for (const Vec3<float>* v : {&a, &b, &d}) {
+          out += "  vertex ";
+          vec(*v);
+        }
+        out += " endloop\nendfacet\n";
+      });
   out += "endsolid ebgeom\n";
   return out;
 }
 
 template <class T> std::string encode_ply(const PolygonSoup<T>& soup, Encoding enc) {
   std::size_t max_face = 0;
-  for (std::size_t f = 0; f < soup.face_count(); ++f) max_face = std::max(max_face, soup.face_size(f));
+  for (std::size_t f = 0; f < soup.face_count(); ++f)
+    max_face = std::max(max_face, soup.face_size(f));
   const bool small = max_face <= 255;
   std::string out = "ply\nformat ";
   out += enc == Encoding::binary ? "binary_little_endian 1.0\n" : "ascii 1.0\n";
@@ -226,7 +228,8 @@ template <class T> std::string encode_vtk(const PolygonSoup<T>& soup, Encoding e
 /// use the shortest form that reads back exactly. Errors: `invalid_argument` (unknown format, a
 /// face with fewer than 3 corners, an index out of range, a non-finite vertex), `empty` (no
 /// faces). O(size).
-template <class T> Result<std::string> encode_mesh(const PolygonSoup<T>& soup, const WriteOptions& opt) {
+template <class T>
+Result<std::string> encode_mesh(const PolygonSoup<T>& soup, const WriteOptions& opt) {
   auto ok = detail::check_writable(soup);
   if (!ok) return ok.error();
   switch (opt.format) {
@@ -250,7 +253,8 @@ template <class T>
 Result<Ok> write_mesh(const std::string& path, const PolygonSoup<T>& soup, WriteOptions opt = {}) {
   if (opt.format == MeshFormat::unknown) opt.format = detail::format_from_extension(path);
   if (opt.format == MeshFormat::unknown)
-    return make_error(ErrorCode::invalid_argument, path, ": cannot tell the format from the extension");
+    return make_error(ErrorCode::invalid_argument, path,
+                      ": cannot tell the format from the extension");
   auto bytes = encode_mesh(soup, opt);
   if (!bytes) return bytes.error();
   std::ofstream f(path, std::ios::binary | std::ios::trunc);

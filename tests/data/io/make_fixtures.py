@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Writes the malformed (and tolerated) mesh fixtures of tests/data/io and their manifest.
+
+Each manifest line: <file> <expected ErrorCode name or ok> <line or -> <byte offset or ->.
+Run from this folder: python3 make_fixtures.py (the outputs are committed)."""
+import struct
+
+TET = ("solid t\n facet normal 0 0 -1\n  outer loop\n   vertex 0 0 0\n   vertex 0 1 0\n"
+       "   vertex 1 0 0\n  endloop\n endfacet\n facet normal 0 -1 0\n  outer loop\n"
+       "   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 0 1\n  endloop\n endfacet\n"
+       " facet normal 1 1 1\n  outer loop\n   vertex 1 0 0\n   vertex 0 1 0\n   vertex 0 0 1\n"
+       "  endloop\n endfacet\n facet normal -1 0 0\n  outer loop\n   vertex 0 0 0\n"
+       "   vertex 0 0 1\n   vertex 0 1 0\n  endloop\n endfacet\nendsolid t\n")
+TET_OBJ = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n"
+PLY_HEAD = ("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n")
+PLY_VERTS = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+PLY_FACES = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"
+VTK_HEAD = "# vtk DataFile Version 3.0\ntet\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n0 0 0 1 0 0 0 1 0 0 0 1\n"
+
+manifest = []
+
+
+def text(name, content, code, line="-", offset="-", crlf=False, bom=False):
+    data = content.replace("\n", "\r\n") if crlf else content
+    raw = data.encode()
+    if bom:
+        raw = b"\xef\xbb\xbf" + raw
+    open(name, "wb").write(raw)
+    manifest.append(f"{name} {code} {line} {offset}")
+
+
+def binary(name, raw, code, offset="-"):
+    open(name, "wb").write(raw)
+    manifest.append(f"{name} {code} - {offset}")
+
+
+def stl_binary(tris, header=b"binary", count=None, trailing=b""):
+    out = header.ljust(80, b" ")[:80] + struct.pack("<I", len(tris) if count is None else count)
+    for t in tris:
+        out += struct.pack("<12fH", 0, 0, 0, *t[0], *t[1], *t[2], 0)
+    return out + trailing
+
+
+TRIS = [((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 0), (1, 0, 0), (0, 0, 1)),
+        ((1, 0, 0), (0, 1, 0), (0, 0, 1)), ((0, 0, 0), (0, 0, 1), (0, 1, 0))]
+
+# ---- tolerated inputs ----
+text("stl_crlf.stl", TET, "ok", crlf=True)
+text("stl_bom.stl", TET, "ok", bom=True)
+text("stl_two_solids.stl", TET.replace("endsolid t\n", "endsolid t\nsolid second\n") + "", "truncated", 32)
+text("stl_two_solids_ok.stl", TET[: TET.index(" facet normal 1 1 1")] + "endsolid t\nsolid u\n" +
+     TET[TET.index(" facet normal 1 1 1"):], "ok")
+text("obj_crlf_continuation.obj", "# tet\r\nv 0 0 0\r\nv 1 0 \\\r\n 0\r\nv 0 1 0 0.5 0.5 0.5\nv 0 0 1\n"
+     "vt 0 0\nvn 0 0 1\nf 1 3 \\\n 2\ng part\nusemtl m\ns 1\nf 1/1 2/2 4/3\nf 2//1 3//1 4//1\no obj\n"
+     "f -4 -1 -2 # comment\n", "ok")
+text("ply_bom_crlf.ply", PLY_HEAD + PLY_VERTS + PLY_FACES, "ok", crlf=True, bom=True)
+binary("stl_solid_header_binary.stl", stl_binary(TRIS, header=b"solid binary"), "ok")
+binary("stl_trailing_bytes.stl", stl_binary(TRIS, trailing=b"\0" * 7), "ok")
+
+# ---- STL ----
+text("stl_truncated.stl", TET[: TET.index("   vertex 0 0 1\n  endloop")], "truncated", 13)
+text("stl_nan.stl", TET.replace("vertex 0 0 1\n  endloop\n endfacet\n facet normal 1",
+                                "vertex 0 nan 1\n  endloop\n endfacet\n facet normal 1"), "non_finite", 13)
+text("stl_two_vertex_facet.stl", TET.replace("   vertex 0 1 0\n   vertex 1 0 0\n", "   vertex 0 1 0\n", 1),
+     "degenerate", 6)
+text("stl_bad_keyword.stl", TET.replace("outer loop", "outer lop", 1), "syntax", 3)
+text("stl_bad_number.stl", TET.replace("vertex 0 1 0", "vertex 0 1.0.0 0", 1), "bad_number", 5)
+binary("stl_huge_count.stl", stl_binary(TRIS, count=2**31) + b"\0" * 700, "size_mismatch", 80)
+binary("stl_short_header.stl", b"\0" * 50, "truncated", 50)
+nan = float("nan")
+binary("stl_binary_nan.stl", stl_binary([TRIS[0], ((0, 0, 0), (1, nan, 0), (0, 0, 1))]), "non_finite",
+       84 + 50 + 24)
+binary("stl_zero_triangles.stl", stl_binary([]), "empty", 80)
+
+# ---- OBJ ----
+text("obj_zero_index.obj", TET_OBJ.replace("f 1 2 4", "f 1 0 4"), "bad_index", 6)
+text("obj_out_of_range.obj", TET_OBJ.replace("f 2 3 4", "f 2 3 5"), "bad_index", 7)
+text("obj_relative_out_of_range.obj", TET_OBJ.replace("f 2 3 4", "f -1 -2 -5"), "bad_index", 7)
+text("obj_face_two.obj", TET_OBJ.replace("f 1 4 3", "f 1 4"), "degenerate", 8)
+text("obj_inf.obj", TET_OBJ.replace("v 0 1 0", "v 0 inf 0"), "non_finite", 3)
+text("obj_bad_number.obj", TET_OBJ.replace("v 0 0 1", "v 0 abc 1"), "bad_number", 4)
+text("obj_missing_coordinate.obj", TET_OBJ.replace("v 1 0 0", "v 1 0"), "syntax", 2)
+text("obj_no_faces.obj", "v 0 0 0\nv 1 0 0\n", "empty", 3)
+text("obj_huge_index.obj", TET_OBJ.replace("f 1 2 4", "f 1 2 99999999999999999999999"), "bad_number", 6)
+text("empty.obj", "", "empty", "-", 0)
+
+# ---- PLY ----
+text("ply_huge_count.ply", PLY_HEAD.replace("vertex 4", "vertex 1000000000000") + PLY_VERTS + PLY_FACES,
+     "size_mismatch", 3)
+text("ply_unknown_type.ply", PLY_HEAD.replace("float y", "float128 y") + PLY_VERTS + PLY_FACES,
+     "unsupported", 5)
+text("ply_duplicate_element.ply", PLY_HEAD.replace("element face 4", "element vertex 4") + PLY_VERTS,
+     "syntax", 7)
+text("ply_bad_magic.ply", "plx\n" + PLY_HEAD[4:] + PLY_VERTS + PLY_FACES, "bad_magic", 1)
+text("ply_bad_index.ply", PLY_HEAD + PLY_VERTS + PLY_FACES.replace("3 1 2 3", "3 1 2 4"), "bad_index", 16)
+text("ply_negative_index.ply", PLY_HEAD + PLY_VERTS + PLY_FACES.replace("3 1 2 3", "3 1 -2 3"),
+     "bad_index", 16)
+text("ply_face_two.ply", PLY_HEAD + PLY_VERTS + PLY_FACES.replace("3 0 1 3\n", "2 0 1\n"), "degenerate", 15)
+text("ply_truncated.ply", PLY_HEAD + PLY_VERTS + PLY_FACES[:20], "truncated", 16)
+text("ply_nan.ply", PLY_HEAD + PLY_VERTS.replace("0 1 0", "0 NaN 0") + PLY_FACES, "non_finite", 12)
+text("ply_no_end_header.ply", PLY_HEAD.replace("end_header\n", ""), "truncated", 9)
+text("ply_property_before_element.ply", "ply\nformat ascii 1.0\nproperty float x\n", "syntax", 3)
+text("ply_no_z.ply", PLY_HEAD.replace("property float z\n", "") + PLY_VERTS + PLY_FACES, "syntax", 3)
+ply_bin = (PLY_HEAD.replace("ascii", "binary_little_endian").encode() +
+           struct.pack("<12f", 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1) +
+           b"".join(struct.pack("<B3i", 3, *f) for f in [(0, 2, 1), (0, 1, 3), (1, 2, 3), (0, 3, 2)]))
+binary("ply_binary_ok.ply", ply_bin, "ok")
+binary("ply_binary_truncated.ply", ply_bin[:-6], "truncated", len(ply_bin) - 8)
+binary("ply_binary_bad_index.ply", ply_bin[:-4] + struct.pack("<i", 7), "bad_index", len(ply_bin) - 4)
+
+# ---- VTK ----
+text("vtk_structured_points.vtk", "# vtk DataFile Version 3.0\ngrid\nASCII\nDATASET STRUCTURED_POINTS\n"
+     "DIMENSIONS 2 2 2\n", "unsupported", 4)
+text("vtk_bad_index.vtk", VTK_HEAD + "POLYGONS 2 8\n3 0 1 2\n3 0 1 9\n", "bad_index", 9)
+text("vtk_size_mismatch.vtk", VTK_HEAD + "POLYGONS 2 9\n3 0 1 2\n3 0 1 3\n", "size_mismatch", 7)
+text("vtk_bad_magic.vtk", "# vtx DataFile Version 3.0\n", "bad_magic", 1)
+text("vtk_huge_points.vtk", VTK_HEAD.replace("POINTS 4", "POINTS 4000000000"), "size_mismatch", 5)
+text("vtk_unknown_section.vtk", VTK_HEAD + "POLYHEDRA 1 4\n", "syntax", 7)
+
+binary("garbage.bin", bytes(range(7, 200)), "bad_magic", 0)
+
+open("expected.txt", "w").write("\n".join(manifest) + "\n")
