@@ -49,11 +49,14 @@ template <class T> std::vector<TriangleXyz<T>> canonical_triangles(const Polygon
 }
 
 /// Same welded mesh up to numbering: equal vertex counts, face counts and canonical triangles.
-template <class T> ::testing::AssertionResult same_mesh(const PolygonSoup<T>& a, const PolygonSoup<T>& b) {
+template <class T>
+::testing::AssertionResult same_mesh(const PolygonSoup<T>& a, const PolygonSoup<T>& b) {
   if (a.vertex_count() != b.vertex_count())
-    return ::testing::AssertionFailure() << "vertex counts " << a.vertex_count() << " vs " << b.vertex_count();
+    return ::testing::AssertionFailure()
+           << "vertex counts " << a.vertex_count() << " vs " << b.vertex_count();
   if (a.face_count() != b.face_count())
-    return ::testing::AssertionFailure() << "face counts " << a.face_count() << " vs " << b.face_count();
+    return ::testing::AssertionFailure()
+           << "face counts " << a.face_count() << " vs " << b.face_count();
   if (canonical_triangles(a) != canonical_triangles(b))
     return ::testing::AssertionFailure() << "the triangles differ";
   return ::testing::AssertionSuccess();

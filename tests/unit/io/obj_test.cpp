@@ -26,10 +26,10 @@ TYPED_TEST(ObjTest, CornerFormsRelativeIndicesGroupsAndComments) {
   using T = TypeParam;
   const std::string text = "# comment\nmtllib x.mtl\no thing\n" + std::string(tet_vertices) +
                            "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\ng a b\nusemtl red\ns off\n"
-                           "f 1/1 3/2 2/3\n"          // v/vt
-                           "f 1/1/1 2/2/1 4/3/1\n"    // v/vt/vn
-                           "f 2//1 3//1 4//1  # trailing comment\n"  // v//vn
-                           "f -4 -1 -2\n"             // relative: 1 4 3
+                           "f 1/1 3/2 2/3\n"                        // v/vt
+                           "f 1/1/1 2/2/1 4/3/1\n"                  // v/vt/vn
+                           "f 2//1 3//1 4//1  # trailing comment\n" // v//vn
+                           "f -4 -1 -2\n"                           // relative: 1 4 3
                            "l 1 2\np 3\n";
   auto r = io::parse_obj<T>(text, {});
   ASSERT_TRUE(r.has_value()) << r.error().what();
@@ -39,7 +39,8 @@ TYPED_TEST(ObjTest, CornerFormsRelativeIndicesGroupsAndComments) {
 TYPED_TEST(ObjTest, RelativeIndicesCountFromTheVerticesSoFar) {
   using T = TypeParam;
   // The second face's -3 -2 -1 are vertices 4 5 6 (0-based 3 4 5), not 1 2 3.
-  auto r = io::parse_obj<T>("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 0 0 1\nv 1 0 1\nv 0 1 1\nf -3 -2 -1\n", {});
+  auto r = io::parse_obj<T>(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 0 0 1\nv 1 0 1\nv 0 1 1\nf -3 -2 -1\n", {});
   ASSERT_TRUE(r.has_value()) << r.error().what();
   ASSERT_EQ(r->face_count(), 2u);
   EXPECT_EQ(r->face(0)[0], 0u);
@@ -62,7 +63,7 @@ TYPED_TEST(ObjTest, PolygonsColorsContinuationAndCrlf) {
   auto e = io::parse_obj<T>(text + "f 1 2 \\\n 9\n", {});
   ASSERT_FALSE(e.has_value());
   EXPECT_EQ(e.error().code, ErrorCode::bad_index);
-  EXPECT_EQ(e.error().line, 9u);  // the line holding the bad index
+  EXPECT_EQ(e.error().line, 9u); // the line holding the bad index
 }
 
 TYPED_TEST(ObjTest, NumbersThroughFromChars) {
@@ -70,7 +71,7 @@ TYPED_TEST(ObjTest, NumbersThroughFromChars) {
   auto r = io::parse_obj<T>("v +1.5 -2e-3 1E2\nv 1e-60000 0 0\nv 0 0 1\nf 1 2 3\n", {});
   ASSERT_TRUE(r.has_value()) << r.error().what();
   EXPECT_EQ(r->vertices[0], (Vec3<T>{T(1.5), T(-2e-3), T(100)}));
-  EXPECT_EQ(r->vertices[1].x, T(0));  // underflow is zero
+  EXPECT_EQ(r->vertices[1].x, T(0)); // underflow is zero
   auto over = io::parse_obj<T>("v 1e999999 0 0\n", {});
   ASSERT_FALSE(over.has_value());
   EXPECT_EQ(over.error().code, ErrorCode::bad_number);
@@ -94,10 +95,14 @@ TYPED_TEST(ObjTest, IndexErrors) {
     const char* face;
     ErrorCode code;
   };
-  const Case cases[] = {{"f 1 2 0\n", ErrorCode::bad_index},   {"f 1 2 5\n", ErrorCode::bad_index},
-                        {"f -5 1 2\n", ErrorCode::bad_index},  {"f 1 2\n", ErrorCode::degenerate},
-                        {"f\n", ErrorCode::degenerate},        {"f 1 2 x\n", ErrorCode::bad_number},
-                        {"f 1 2 3a\n", ErrorCode::bad_number}, {"f 1 2 3/a\n", ErrorCode::syntax},
+  const Case cases[] = {{"f 1 2 0\n", ErrorCode::bad_index},
+                        {"f 1 2 5\n", ErrorCode::bad_index},
+                        {"f -5 1 2\n", ErrorCode::bad_index},
+                        {"f 1 2\n", ErrorCode::degenerate},
+                        {"f\n", ErrorCode::degenerate},
+                        {"f 1 2 x\n", ErrorCode::bad_number},
+                        {"f 1 2 3a\n", ErrorCode::bad_number},
+                        {"f 1 2 3/a\n", ErrorCode::syntax},
                         {"f 1 2 99999999999999999999\n", ErrorCode::bad_number}};
   for (const Case& c : cases) {
     auto r = io::parse_obj<T>(v + c.face, {});

@@ -16,30 +16,40 @@ namespace {
 template <class T> class PlyTest : public ::testing::Test {};
 TYPED_TEST_SUITE(PlyTest, test::FloatTypes);
 
-const char* const all_types[] = {"char",  "uchar",  "short", "ushort", "int",   "uint",
-                                 "float", "double", "int8",  "uint8",  "int16", "uint16",
+const char* const all_types[] = {"char",  "uchar",  "short",   "ushort", "int",   "uint",
+                                 "float", "double", "int8",    "uint8",  "int16", "uint16",
                                  "int32", "uint32", "float32", "float64"};
 
 // Appends `v` stored as PLY type `ty`.
 void put_as(Bytes& b, const std::string& ty, double v) {
-  if (ty == "char" || ty == "int8") b.put(std::int8_t(v));
-  else if (ty == "uchar" || ty == "uint8") b.put(std::uint8_t(v));
-  else if (ty == "short" || ty == "int16") b.put(std::int16_t(v));
-  else if (ty == "ushort" || ty == "uint16") b.put(std::uint16_t(v));
-  else if (ty == "int" || ty == "int32") b.put(std::int32_t(v));
-  else if (ty == "uint" || ty == "uint32") b.put(std::uint32_t(v));
-  else if (ty == "float" || ty == "float32") b.put(float(v));
-  else b.put(double(v));
+  if (ty == "char" || ty == "int8")
+    b.put(std::int8_t(v));
+  else if (ty == "uchar" || ty == "uint8")
+    b.put(std::uint8_t(v));
+  else if (ty == "short" || ty == "int16")
+    b.put(std::int16_t(v));
+  else if (ty == "ushort" || ty == "uint16")
+    b.put(std::uint16_t(v));
+  else if (ty == "int" || ty == "int32")
+    b.put(std::int32_t(v));
+  else if (ty == "uint" || ty == "uint32")
+    b.put(std::uint32_t(v));
+  else if (ty == "float" || ty == "float32")
+    b.put(float(v));
+  else
+    b.put(double(v));
 }
 
-bool is_int_type(const std::string& ty) { return ty.find("float") == std::string::npos && ty != "double"; }
+bool is_int_type(const std::string& ty) {
+  return ty.find("float") == std::string::npos && ty != "double";
+}
 
 struct PlySpec {
-  std::string format = "ascii";  // or binary_little_endian / binary_big_endian
+  std::string format = "ascii"; // or binary_little_endian / binary_big_endian
   std::string coord = "float";
   std::string count = "uchar";
   std::string index = "int";
-  bool extras = false;  // an extra property before x, a list in the vertices, and an extra element
+  bool extras = false; // an extra property before x, a list in the vertices, and an extra element
 };
 
 // The tetrahedron as a PLY file described by `spec`.
@@ -57,13 +67,15 @@ std::string tet_ply(const PlySpec& sp) {
   h += "element face 4\n";
   if (sp.extras) h += "property uint tag\n";
   h += "property list " + sp.count + " " + sp.index + " vertex_indices\n";
-  if (sp.extras) h += "property list uchar float texcoord\nelement edge 1\nproperty int a\nproperty int b\n";
+  if (sp.extras)
+    h += "property list uchar float texcoord\nelement edge 1\nproperty int a\nproperty int b\n";
   h += "end_header\n";
   b.text(h);
   auto num = [&](const std::string& ty, double v) {
     if (ascii)
       b.text((is_int_type(ty) ? std::to_string((long long)v) : std::to_string(v)) + " ");
-    else put_as(b, ty, v);
+    else
+      put_as(b, ty, v);
   };
   if (sp.extras) {
     for (int m = 0; m < 2; ++m) {
@@ -128,7 +140,7 @@ TYPED_TEST(PlyTest, EveryListCountAndIndexType) {
   for (const char* fmt : formats)
     for (const char* ct : all_types)
       for (const char* it : all_types) {
-        if (!is_int_type(ct)) continue;  // list counts must be integers (checked below)
+        if (!is_int_type(ct)) continue; // list counts must be integers (checked below)
         if (!is_int_type(it)) continue;
         PlySpec sp;
         sp.format = fmt;
@@ -186,9 +198,10 @@ TYPED_TEST(PlyTest, TriangleStripsWithRestartsAndAlternatingWinding) {
   // degenerate stitch (repeated index) that must be dropped.
   //   3 4 5
   //   0 1 2
-  std::string head = "ply\nformat ascii 1.0\nelement vertex 6\nproperty double x\nproperty double y\n"
-                     "property double z\nelement tristrips 1\nproperty list int int vertex_indices\n"
-                     "end_header\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n";
+  std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 6\nproperty double x\nproperty double y\n"
+      "property double z\nelement tristrips 1\nproperty list int int vertex_indices\n"
+      "end_header\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n";
   auto r = io::parse_ply<T>(head + "9 0 1 3 4 -1 1 2 4 4 5\n", {});
   ASSERT_TRUE(r.has_value()) << r.error().what();
   // Strip 0 1 3 4: (0 1 3), (3 1 4). Strip 1 2 4 4 5: (1 2 4), (4 2 4) dropped, (4 4 5) dropped.
@@ -201,7 +214,8 @@ TYPED_TEST(PlyTest, TriangleStripsWithRestartsAndAlternatingWinding) {
   // All kept triangles face +z (consistent winding): the z of each normal is positive.
   for (std::size_t f = 0; f < r->face_count(); ++f) {
     const auto c = r->face(f);
-    const auto n = cross(r->vertices[c[1]] - r->vertices[c[0]], r->vertices[c[2]] - r->vertices[c[0]]);
+    const auto n =
+        cross(r->vertices[c[1]] - r->vertices[c[0]], r->vertices[c[2]] - r->vertices[c[0]]);
     EXPECT_GT(n.z, T(0));
   }
   auto bad = io::parse_ply<T>(head + "4 0 1 -2 4\n", {});

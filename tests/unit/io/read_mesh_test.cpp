@@ -16,7 +16,9 @@ namespace {
 template <class T> class ReadMeshTest : public ::testing::Test {};
 TYPED_TEST_SUITE(ReadMeshTest, test::FloatTypes);
 
-std::string fixture(const std::string& name) { return std::string(EBGEOM_TEST_DATA_DIR) + "/io/" + name; }
+std::string fixture(const std::string& name) {
+  return std::string(EBGEOM_TEST_DATA_DIR) + "/io/" + name;
+}
 
 ErrorCode code_from_name(const std::string& s) {
   for (int c = 0; c <= int(ErrorCode::out_of_memory); ++c)
@@ -79,12 +81,16 @@ TYPED_TEST(ReadMeshTest, RoundTripThroughEveryWriter) {
   using T = TypeParam;
   // A mesh with a quad and a pentagon, non-trivial coordinates.
   PolygonSoup<T> s;
-  s.vertices = {{0, 0, 0}, {T(1.1), 0, 0}, {T(1.1), T(0.3), T(1e-7)}, {0, T(0.3), T(-2.5e6)},
+  s.vertices = {{0, 0, 0},
+                {T(1.1), 0, 0},
+                {T(1.1), T(0.3), T(1e-7)},
+                {0, T(0.3), T(-2.5e6)},
                 {T(0.5), T(-1) / T(3), T(3.14159265358979)}};
   s.add_face({0, 1, 2, 3});
   s.add_face({0, 4, 1});
   s.add_face({4, 3, 2, 1, 0});
-  for (io::MeshFormat f : {io::MeshFormat::stl, io::MeshFormat::ply, io::MeshFormat::obj, io::MeshFormat::vtk})
+  for (io::MeshFormat f :
+       {io::MeshFormat::stl, io::MeshFormat::ply, io::MeshFormat::obj, io::MeshFormat::vtk})
     for (io::Encoding e : {io::Encoding::binary, io::Encoding::ascii}) {
       io::WriteOptions w;
       w.format = f;
@@ -107,7 +113,7 @@ TYPED_TEST(ReadMeshTest, RoundTripThroughEveryWriter) {
         EXPECT_EQ(r->face_count(), s.triangle_count());
         EXPECT_EQ(test::canonical_triangles(rs), test::canonical_triangles(fs));
       } else {
-        EXPECT_EQ(*r, s) << io::to_string(f) << " " << int(e);  // exact, same numbering
+        EXPECT_EQ(*r, s) << io::to_string(f) << " " << int(e); // exact, same numbering
       }
     }
 }
@@ -115,7 +121,8 @@ TYPED_TEST(ReadMeshTest, RoundTripThroughEveryWriter) {
 TYPED_TEST(ReadMeshTest, WriteAndReadFiles) {
   using T = TypeParam;
   const auto tet = test::tetrahedron<T>();
-  const std::string path = ::testing::TempDir() + "ebgeom_io_rt_" + std::to_string(sizeof(T)) + ".ply";
+  const std::string path =
+      ::testing::TempDir() + "ebgeom_io_rt_" + std::to_string(sizeof(T)) + ".ply";
   ASSERT_TRUE(io::write_mesh(path, tet).has_value());
   auto r = io::read_mesh<T>(path);
   ASSERT_TRUE(r.has_value()) << r.error().what();

@@ -25,7 +25,8 @@ template <class T> std::string binary_stl(const PolygonSoup<T>& s, const std::st
   b.text(h).put(std::uint32_t(s.face_count()));
   for (std::size_t f = 0; f < s.face_count(); ++f) {
     b.put(0.f).put(0.f).put(0.f);
-    for (Index i : s.face(f)) b.put(float(s.vertices[i].x)).put(float(s.vertices[i].y)).put(float(s.vertices[i].z));
+    for (Index i : s.face(f))
+      b.put(float(s.vertices[i].x)).put(float(s.vertices[i].y)).put(float(s.vertices[i].z));
     b.put(std::uint16_t(0));
   }
   return b.s;
@@ -144,7 +145,8 @@ TYPED_TEST(StlTest, BinaryTruncatedAndNonFinite) {
   ASSERT_FALSE(tiny.has_value());
   EXPECT_EQ(tiny.error().code, ErrorCode::truncated);
   EXPECT_EQ(tiny.error().byte_offset, 83u);
-  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+  for (float bad :
+       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     std::string s = good;
     const std::size_t off = 84 + 2 * 50 + 12 + 3 * 4 + 8; // triangle 2, vertex 1, z
     std::memcpy(&s[off], &bad, 4);
@@ -164,9 +166,9 @@ TYPED_TEST(StlTest, AsciiMultipleSolidsCrlfAndNames) {
   using T = TypeParam;
   const auto tet = test::tetrahedron<T>();
   PolygonSoup<T> first = tet, second = tet;
-  first.offsets.resize(3);  // faces 0, 1
+  first.offsets.resize(3); // faces 0, 1
   first.indices.resize(6);
-  second.offsets = {0, 3, 6};  // faces 2, 3
+  second.offsets = {0, 3, 6}; // faces 2, 3
   second.indices.assign(tet.indices.begin() + 6, tet.indices.end());
   std::string text = ascii_stl(first, "part one") + "\n\n" + ascii_stl(second, "two");
   for (const bool crlf : {false, true}) {
@@ -197,12 +199,14 @@ TYPED_TEST(StlTest, AsciiErrorsCarryLines) {
   using T = TypeParam;
   io::ReadOptions opt;
   opt.path = "part.stl";
-  auto r = io::parse_stl<T>("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n", opt);
+  auto r =
+      io::parse_stl<T>("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n", opt);
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::truncated);
   EXPECT_EQ(r.error().line, 6u);
   EXPECT_EQ(r.error().what().rfind("part.stl: line 6: ", 0), 0u) << r.error().what();
-  auto s = io::parse_stl<T>("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 x\n", opt);
+  auto s = io::parse_stl<T>("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 x\n",
+                            opt);
   ASSERT_FALSE(s.has_value());
   EXPECT_EQ(s.error().code, ErrorCode::bad_number);
   EXPECT_EQ(s.error().line, 5u);

@@ -52,8 +52,9 @@ TYPED_TEST(VtkTest, AsciiPolygons) {
 
 TYPED_TEST(VtkTest, AsciiSkipsFieldMetadataVerticesAndLines) {
   using T = TypeParam;
-  const std::string text = head + "FIELD FieldData 2\nTIME 1 1 double\n0.5\nNAMES 2 1 int\n1 2\n" + points +
-                           "METADATA\nINFORMATION 0\n\nVERTICES 2 4\n1 0\n1 1\nLINES 1 3\n2 0 1\n" + polys;
+  const std::string text =
+      head + "FIELD FieldData 2\nTIME 1 1 double\n0.5\nNAMES 2 1 int\n1 2\n" + points +
+      "METADATA\nINFORMATION 0\n\nVERTICES 2 4\n1 0\n1 1\nLINES 1 3\n2 0 1\n" + polys;
   auto r = io::parse_vtk<T>(text, {});
   ASSERT_TRUE(r.has_value()) << r.error().what();
   EXPECT_EQ(*r, test::tetrahedron<T>());
@@ -61,16 +62,18 @@ TYPED_TEST(VtkTest, AsciiSkipsFieldMetadataVerticesAndLines) {
 
 TYPED_TEST(VtkTest, Vtk51OffsetsConnectivityAscii) {
   using T = TypeParam;
-  const std::string text = head + points +
-                           "POLYGONS 5 12\nOFFSETS vtktypeint64\n0 3 6 9 12\nCONNECTIVITY vtktypeint64\n"
-                           "0 2 1 0 1 3 1 2 3 0 3 2\n";
+  const std::string text =
+      head + points +
+      "POLYGONS 5 12\nOFFSETS vtktypeint64\n0 3 6 9 12\nCONNECTIVITY vtktypeint64\n"
+      "0 2 1 0 1 3 1 2 3 0 3 2\n";
   auto r = io::parse_vtk<T>(text, {});
   ASSERT_TRUE(r.has_value()) << r.error().what();
   EXPECT_EQ(*r, test::tetrahedron<T>());
-  auto bad = io::parse_vtk<T>(head + points +
-                                  "POLYGONS 3 6\nOFFSETS vtktypeint64\n0 4 3\nCONNECTIVITY vtktypeint64\n"
-                                  "0 1 2 0 1 3\n",
-                              {});
+  auto bad =
+      io::parse_vtk<T>(head + points +
+                           "POLYGONS 3 6\nOFFSETS vtktypeint64\n0 4 3\nCONNECTIVITY vtktypeint64\n"
+                           "0 1 2 0 1 3\n",
+                       {});
   ASSERT_FALSE(bad.has_value());
   EXPECT_EQ(bad.error().code, ErrorCode::size_mismatch);
   EXPECT_EQ(bad.error().line, 10u);
@@ -119,11 +122,14 @@ TYPED_TEST(VtkTest, Errors) {
   };
   const std::string ph = head + points;
   const Case cases[] = {
-      {"# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n", ErrorCode::unsupported, 4},
-      {"# vtk DataFile Version 3.0\nx\nASCII\nDATASET STRUCTURED_POINTS\n", ErrorCode::unsupported, 4},
+      {"# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n", ErrorCode::unsupported,
+       4},
+      {"# vtk DataFile Version 3.0\nx\nASCII\nDATASET STRUCTURED_POINTS\n", ErrorCode::unsupported,
+       4},
       {"# vtk DataFile Version 3.0\nx\nUTF8\n", ErrorCode::syntax, 3},
       {"# vtk DataFile Version 3.0\n", ErrorCode::truncated, 2},
-      {"# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 2 bit\n", ErrorCode::unsupported, 5},
+      {"# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 2 bit\n",
+       ErrorCode::unsupported, 5},
       {head + "POINTS 4 float\n0 0 0 1 0 0\n0 1 0 0 0\n", ErrorCode::truncated, 8},
       {head + "POINTS 1 float\n0 nan 0\n", ErrorCode::non_finite, 6},
       {ph + "POLYGONS 1 3\n2 0 1\n", ErrorCode::degenerate, 9},

@@ -1,0 +1,11 @@
+// libFuzzer target for the PLY reader (float and double).
+#include "fuzz_check.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace ebgeom;
+  const io::ByteView b = fuzz::view(data, size);
+  const io::ReadOptions opt = fuzz::fuzz_options();
+  fuzz::check_result(io::parse_ply<float>(b, opt));
+  fuzz::check_result(io::parse_ply<double>(b, opt));
+  return 0;
+}
