@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
              "Run 'ebgeom COMMAND --help' for a command's options and examples.");
   std::vector<Subcommand> subs;
   subs.push_back(add_demo(app));
+  subs.push_back(add_sdf(app));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

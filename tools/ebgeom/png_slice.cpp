@@ -170,10 +170,13 @@ PngInfo write_png_slice(const std::string& path, const SliceData& s) {
   const double px_per_unit = 512.0 / std::max(lu, lv);
   const int pw = std::max(16, std::min(4096, int(std::lround(lu * px_per_unit))));
   const int ph = std::max(16, std::min(4096, int(std::lround(lv * px_per_unit))));
-  double m = 0;
+  // Separate scales inside and outside, so both sides use the full colour range.
+  double m_in = 0, m_out = 0;
   for (double v : s.values)
-    if (std::isfinite(v)) m = std::max(m, std::abs(v));
-  if (m == 0) m = 1;
+    if (std::isfinite(v)) (v < 0 ? m_in : m_out) = std::max(v < 0 ? m_in : m_out, std::abs(v));
+  if (m_in == 0) m_in = m_out > 0 ? m_out : 1;
+  if (m_out == 0) m_out = m_in;
+  const double m = std::max(m_in, m_out);
 
   // Bilinear interpolation of the samples at every plot pixel (v grows upwards).
   std::vector<double> field(std::size_t(pw) * ph);
@@ -204,7 +207,7 @@ PngInfo write_png_slice(const std::string& path, const SliceData& s) {
   const int height = margin + ph + margin + bar_h + 6 + 3 * Image::line + margin;
   Image img(width, height);
   const int x0 = (width - pw) / 2, y0 = margin;
-  const double period = m / 6; // faint bands every m/6 of distance
+  const double period = m / 8; // faint bands every m/8 of distance
   for (int y = 0; y < ph; ++y)
     for (int x = 0; x < pw; ++x) {
       const double v = field[std::size_t(y) * pw + x];
@@ -213,7 +216,7 @@ PngInfo write_png_slice(const std::string& path, const SliceData& s) {
         continue;
       }
       const double band = 0.92 + 0.08 * std::cos(2 * M_PI * v / period);
-      img.set(x0 + x, y0 + y, shade(colour(v / m), band));
+      img.set(x0 + x, y0 + y, shade(colour(v < 0 ? v / m_in : v / m_out), band));
     }
   // Zero level set: a sign change to the right or below.
   const Rgb black{0, 0, 0};
@@ -249,7 +252,7 @@ PngInfo write_png_slice(const std::string& path, const SliceData& s) {
   }
   const int ty = by + bar_h + 6;
   const Rgb ink{20, 20, 20};
-  const std::string lo = number(-m), hi = "+" + number(m);
+  const std::string lo = number(-m_in), hi = "+" + number(m_out);
   img.text(bx, ty, lo, ink);
   img.text(bx + bw / 2 - Image::text_width("0") / 2, ty, "0", ink);
   img.text(bx + bw - Image::text_width(hi), ty, hi, ink);

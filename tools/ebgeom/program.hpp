@@ -1,0 +1,244 @@
+#pragma once
+// `Program<T>`: a scene compiled into a flat post-order tape. Each instruction processes a whole
+// batch of points (one `switch` per instruction per batch of up to 256 points): leaves push a
+// value buffer, transforms push/pop a transformed point buffer, CSG ops pop their operands and
+// push the result. Immutable after compilation; `eval` is thread-safe.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/span.hpp"
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
+#include "ebgeom/sdf/concepts.hpp"
+
+namespace ebgeom::cli {
+
+enum class Op : std::uint8_t {
+  sphere,     // p: cx cy cz r
+  box,        // p: cx cy cz hx hy hz rounding
+  capsule,    // p: ax ay az bx by bz r
+  cylinder,   // p: ax ay az bx by bz r           (capped, exact)
+  torus,      // p: cx cy cz R r                  (axis z)
+  plane,      // p: nx ny nz d                    (inside: n.p < d)
+  mesh,       // a: mesh index; n = 1: unsigned distance
+  push_xform, // a: transform index; pushes transformed points
+  pop_xform,  // a: transform index; pops points, scales the top value
+  unite,      // n operands; p: k (0 = sharp)
+  intersect,  // n operands; p: k
+  subtract,   // n operands (first minus the others); p: k
+  offset,     // p: r        value - r
+  shell,      // p: t        |value| - t
+};
+
+/// One tape instruction: 12 B.
+struct Instr {
+  Op op;
+  std::uint32_t a = 0; // first parameter index, or mesh/transform index
+  std::uint32_t n = 0; // operand count (CSG)
+};
+
+/// Rigid transform plus uniform scale: world = t + R (s * local).
+template <class T> struct Xform {
+  std::array<T, 9> r{{1, 0, 0, 0, 1, 0, 0, 0, 1}}; // row-major rotation
+  Vec3<T> t = Vec3<T>::zero();
+  T s = 1;
+  Vec3<T> to_local(const Vec3<T>& p) const noexcept {
+    const Vec3<T> q = p - t;
+    // R^T q / s
+    return Vec3<T>{r[0] * q.x + r[3] * q.y + r[6] * q.z, r[1] * q.x + r[4] * q.y + r[7] * q.z,
+                   r[2] * q.x + r[5] * q.y + r[8] * q.z} /
+           s;
+  }
+  Vec3<T> to_world(const Vec3<T>& p) const noexcept {
+    const Vec3<T> q = p * s;
+    return Vec3<T>{r[0] * q.x + r[1] * q.y + r[2] * q.z, r[3] * q.x + r[4] * q.y + r[5] * q.z,
+                   r[6] * q.x + r[7] * q.y + r[8] * q.z} +
+           t;
+  }
+};
+
+namespace detail {
+template <class T> inline T smin(T a, T b, T k) noexcept {
+  if (k <= T(0)) return std::min(a, b);
+  const T h = std::max(k - std::abs(a - b), T(0)) / k;
+  return std::min(a, b) - h * h * k * T(0.25);
+}
+template <class T> inline T smax(T a, T b, T k) noexcept { return -smin(-a, -b, k); }
+} // namespace detail
+
+template <class T> class Program {
+ public:
+  using scalar_type = T;
+  /// Conservative static kind; `dynamic_kind()` gives the compiled scene's real kind.
+  static constexpr SdfKind kind = SdfKind::implicit;
+  static constexpr std::size_t batch = 256;
+
+  std::vector<Instr> code;
+  std::vector<T> params;
+  std::vector<Xform<T>> xforms;
+  std::vector<std::shared_ptr<const BruteForceMeshSdf<T>>> meshes;
+  Aabb<T> box = Aabb<T>::infinite();
+  SdfKind scene_kind = SdfKind::exact;
+  std::size_t max_values = 1, max_points = 1; // stack depths proven by the compiler
+
+  SdfKind dynamic_kind() const noexcept { return scene_kind; }
+  Aabb<T> bounds() const noexcept { return box; }
+  std::size_t triangle_count() const noexcept {
+    std::size_t n = 0;
+    for (const auto& m : meshes) n += m->mesh().triangle_count();
+    return n;
+  }
+
+  T operator()(const Vec3<T>& p) const noexcept {
+    T v = 0;
+    eval(Span<const Vec3<T>>(&p, 1), Span<T>(&v, 1));
+    return v;
+  }
+
+  /// out[i] = S(points[i]). Thread-safe.
+  void eval(Span<const Vec3<T>> points, Span<T> out) const {
+    std::vector<T> vals(max_values * batch);
+    std::vector<Vec3<T>> pts((max_points + 1) * batch);
+    for (std::size_t s = 0; s < points.size(); s += batch) {
+      const std::size_t n = std::min(batch, points.size() - s);
+      run(points.subspan(s, n), vals.data(), pts.data());
+      for (std::size_t i = 0; i < n; ++i) out[s + i] = vals[i];
+    }
+  }
+
+ private:
+  void run(Span<const Vec3<T>> in, T* vals, Vec3<T>* pts) const {
+    const std::size_t n = in.size();
+    std::size_t vt = 0; // value stack height
+    std::size_t pt = 0; // point stack height (0 = the input)
+    auto P = [&](std::size_t level) -> const Vec3<T>* {
+      return level == 0 ? in.data() : pts + (level - 1) * batch;
+    };
+    for (const Instr& ins : code) {
+      const T* q = params.data() + ins.a;
+      const Vec3<T>* p = P(pt);
+      T* v = vals + vt * batch;
+      switch (ins.op) {
+      case Op::sphere: {
+        const Vec3<T> c{q[0], q[1], q[2]};
+        for (std::size_t i = 0; i < n; ++i) v[i] = norm(p[i] - c) - q[3];
+        ++vt;
+        break;
+      }
+      case Op::box: {
+        const Vec3<T> c{q[0], q[1], q[2]};
+        const Vec3<T> h = Vec3<T>{q[3], q[4], q[5]} - Vec3<T>::constant(q[6]);
+        for (std::size_t i = 0; i < n; ++i) {
+          const Vec3<T> d = abs(p[i] - c) - h;
+          v[i] = norm(max(d, Vec3<T>::zero())) + std::min(max_component(d), T(0)) - q[6];
+        }
+        ++vt;
+        break;
+      }
+      case Op::capsule: {
+        const Vec3<T> a{q[0], q[1], q[2]}, ab = Vec3<T>{q[3], q[4], q[5]} - a;
+        const T ab2 = dot(ab, ab);
+        for (std::size_t i = 0; i < n; ++i) {
+          const T t = ab2 > T(0) ? clamp(dot(p[i] - a, ab) / ab2, T(0), T(1)) : T(0);
+          v[i] = norm(p[i] - (a + ab * t)) - q[6];
+        }
+        ++vt;
+        break;
+      }
+      case Op::cylinder: { // exact capped cylinder (I. Quilez)
+        const Vec3<T> a{q[0], q[1], q[2]}, ba = Vec3<T>{q[3], q[4], q[5]} - a;
+        const T baba = dot(ba, ba), r = q[6];
+        for (std::size_t i = 0; i < n; ++i) {
+          const Vec3<T> pa = p[i] - a;
+          const T paba = dot(pa, ba);
+          const T x = norm(pa * baba - ba * paba) - r * baba;
+          const T y = std::abs(paba - baba * T(0.5)) - baba * T(0.5);
+          const T x2 = x * x, y2 = y * y * baba;
+          const T d = std::max(x, y) < T(0)
+                          ? -std::min(x2, y2)
+                          : ((x > T(0) ? x2 : T(0)) + (y > T(0) ? y2 : T(0)));
+          v[i] = std::copysign(std::sqrt(std::abs(d)), d) / baba;
+        }
+        ++vt;
+        break;
+      }
+      case Op::torus: {
+        const Vec3<T> c{q[0], q[1], q[2]};
+        for (std::size_t i = 0; i < n; ++i) {
+          const Vec3<T> d = p[i] - c;
+          const T qx = std::sqrt(d.x * d.x + d.y * d.y) - q[3];
+          v[i] = std::sqrt(qx * qx + d.z * d.z) - q[4];
+        }
+        ++vt;
+        break;
+      }
+      case Op::plane: {
+        const Vec3<T> nn{q[0], q[1], q[2]};
+        for (std::size_t i = 0; i < n; ++i) v[i] = dot(nn, p[i]) - q[3];
+        ++vt;
+        break;
+      }
+      case Op::mesh: {
+        const auto& m = *meshes[ins.a];
+        for (std::size_t i = 0; i < n; ++i) v[i] = m(p[i]);
+        if (ins.n == 1) // unsigned distance
+          for (std::size_t i = 0; i < n; ++i) v[i] = std::abs(v[i]);
+        ++vt;
+        break;
+      }
+      case Op::push_xform: {
+        const Xform<T>& x = xforms[ins.a];
+        Vec3<T>* o = pts + pt * batch;
+        for (std::size_t i = 0; i < n; ++i) o[i] = x.to_local(p[i]);
+        ++pt;
+        break;
+      }
+      case Op::pop_xform: {
+        const T s = xforms[ins.a].s;
+        T* top = vals + (vt - 1) * batch;
+        if (s != T(1))
+          for (std::size_t i = 0; i < n; ++i) top[i] *= s;
+        --pt;
+        break;
+      }
+      case Op::unite:
+      case Op::intersect:
+      case Op::subtract: {
+        const T k = q[0];
+        T* first = vals + (vt - ins.n) * batch;
+        for (std::uint32_t c = 1; c < ins.n; ++c) {
+          const T* other = first + c * batch;
+          if (ins.op == Op::unite)
+            for (std::size_t i = 0; i < n; ++i) first[i] = detail::smin(first[i], other[i], k);
+          else if (ins.op == Op::intersect)
+            for (std::size_t i = 0; i < n; ++i) first[i] = detail::smax(first[i], other[i], k);
+          else
+            for (std::size_t i = 0; i < n; ++i) first[i] = detail::smax(first[i], -other[i], k);
+        }
+        vt -= ins.n - 1;
+        break;
+      }
+      case Op::offset: {
+        T* top = vals + (vt - 1) * batch;
+        for (std::size_t i = 0; i < n; ++i) top[i] -= q[0];
+        break;
+      }
+      case Op::shell: {
+        T* top = vals + (vt - 1) * batch;
+        for (std::size_t i = 0; i < n; ++i) top[i] = std::abs(top[i]) - q[0];
+        break;
+      }
+      }
+    }
+  }
+};
+
+} // namespace ebgeom::cli

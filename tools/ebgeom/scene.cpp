@@ -1,0 +1,46 @@
+#include "scene.hpp"
+
+#include <algorithm>
+
+namespace ebgeom::cli {
+
+Json read_json_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(exit_input, path + ": cannot open (" + std::string(std::strerror(errno)) + ")");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  try {
+    return Json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const Json::parse_error& e) {
+    // Locate the byte offset as line and column.
+    const std::size_t at = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+    const std::size_t line = 1 + std::count(text.begin(), text.begin() + long(at), '\n');
+    const std::size_t nl = text.rfind('\n', at == 0 ? 0 : at - 1);
+    const std::size_t col = nl == std::string::npos ? at + 1 : at - nl;
+    std::string what = e.what();
+    const auto p = what.find("parse error");
+    if (p != std::string::npos) what = what.substr(p);
+    fail(exit_input, path + ": line " + std::to_string(line) + ", column " + std::to_string(col) +
+                         ": invalid JSON: " + what);
+  }
+}
+
+bool is_scene_path(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext == ".json" || ext == ".JSON";
+}
+
+SignMode parse_sign_mode(const std::string& s, int code, const std::string& where) {
+  if (s == "pseudonormal") return SignMode::pseudonormal;
+  if (s == "unsigned") return SignMode::unsigned_distance;
+  if (s == "winding" || s == "fast-winding" || s == "auto")
+    fail(code, where + ": sign mode '" + s +
+                   "' is not available yet in this version (available: pseudonormal, unsigned)");
+  fail(code, where + ": unknown sign mode '" + s +
+                 "' (expected pseudonormal or unsigned; winding, fast-winding and auto are planned)");
+}
+
+const char* to_string(SignMode m) {
+  return m == SignMode::pseudonormal ? "pseudonormal" : "unsigned";
+}
+
+} // namespace ebgeom::cli

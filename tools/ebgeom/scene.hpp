@@ -1,0 +1,417 @@
+#pragma once
+// JSON scene files (docs/scene-format.md) compiled into a `Program<T>`. Every error names the file
+// and the JSON pointer of the offending value, e.g.
+// `scene.json: /root/children/2/radius: expected a positive number, got -1`.
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common.hpp"
+#include "ebgeom/mesh/generate.hpp"
+#include "mesh_input.hpp"
+#include "program.hpp"
+
+namespace ebgeom::cli {
+
+using Json = nlohmann::json;
+
+/// Reads and parses a JSON file. Throws CliError (input): `FILE: line L, column C: what`.
+Json read_json_file(const std::string& path);
+
+/// True when `path` names a scene file (extension .json).
+bool is_scene_path(const std::string& path);
+
+/// Facts about a compiled scene, for summaries.
+struct SceneInfo {
+  std::size_t nodes = 0, primitives = 0, meshes = 0;
+};
+
+namespace detail {
+
+inline std::string describe(const Json& j) {
+  std::string s = j.dump();
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  return s;
+}
+
+template <class T> class SceneCompiler {
+ public:
+  SceneCompiler(std::string file, Program<T>& prog, SceneInfo& info)
+      : file_(std::move(file)), prog_(prog), info_(info) {
+    dir_ = std::filesystem::path(file_).parent_path().string();
+  }
+
+  [[noreturn]] void bad(const std::string& ptr, const std::string& msg) const {
+    fail(exit_input, file_ + ": " + (ptr.empty() ? "/" : ptr) + ": " + msg);
+  }
+
+  /// Compiles a node; returns its bounds. Tracks stack depths.
+  Aabb<T> node(const Json& j, const std::string& ptr, SdfKind& kind) {
+    if (!j.is_object()) bad(ptr, "expected a node object {\"type\": ...}, got " + describe(j));
+    ++info_.nodes;
+    const auto t = j.find("type");
+    if (t == j.end()) bad(ptr, "missing \"type\" (sphere, box, capsule, cylinder, torus, plane, "
+                               "mesh, union, intersection, difference, transform)");
+    if (!t->is_string()) bad(ptr + "/type", "expected a string, got " + describe(*t));
+    const std::string type = *t;
+
+    const bool has_xform = j.contains("translate") || j.contains("rotate") || j.contains("scale");
+    std::uint32_t xi = 0;
+    if (has_xform) {
+      Xform<T> x = parse_xform(j, ptr);
+      xi = std::uint32_t(prog_.xforms.size());
+      prog_.xforms.push_back(x);
+      prog_.code.push_back({Op::push_xform, xi, 0});
+      ++points_;
+      prog_.max_points = std::max(prog_.max_points, points_);
+    }
+    Aabb<T> b = body(type, j, ptr, kind);
+    if (has_xform) {
+      prog_.code.push_back({Op::pop_xform, xi, 0});
+      --points_;
+      b = transform_box(prog_.xforms[xi], b);
+    }
+    if (j.contains("offset")) {
+      const T r = number(j, ptr, "offset", Need::finite);
+      prog_.code.push_back({Op::offset, param(r), 0});
+      if (r < 0) kind = weakest(kind, SdfKind::bound);
+      if (r > 0) b = b.grown(r);
+    }
+    if (j.contains("shell")) {
+      const T s = number(j, ptr, "shell", Need::positive);
+      prog_.code.push_back({Op::shell, param(s), 0});
+      b = b.grown(s);
+    }
+    return b;
+  }
+
+ private:
+  enum class Need { finite, positive, non_negative };
+
+  std::uint32_t param(T v) {
+    prog_.params.push_back(v);
+    return std::uint32_t(prog_.params.size() - 1);
+  }
+  std::uint32_t params(std::initializer_list<T> v) {
+    const auto at = std::uint32_t(prog_.params.size());
+    prog_.params.insert(prog_.params.end(), v);
+    return at;
+  }
+  void push_value() {
+    ++values_;
+    prog_.max_values = std::max(prog_.max_values, values_);
+  }
+
+  void check_keys(const Json& j, const std::string& ptr, const std::string& type,
+                  std::initializer_list<const char*> allowed) const {
+    static const char* common[] = {"type", "name", "comment", "translate", "rotate",
+                                   "scale", "offset", "shell"};
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      bool ok = false;
+      for (const char* c : common) ok = ok || it.key() == c;
+      for (const char* a : allowed) ok = ok || it.key() == a;
+      if (!ok) {
+        std::string list;
+        for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+        bad(ptr + "/" + it.key(), "unknown key for a " + type + " (its keys: " +
+                                      (list.empty() ? std::string("none") : list) +
+                                      "; any node: name, translate, rotate, scale, offset, shell)");
+      }
+    }
+  }
+
+  T number(const Json& j, const std::string& ptr, const char* key, Need need) const {
+    const auto it = j.find(key);
+    if (it == j.end()) bad(ptr, std::string("missing \"") + key + "\"");
+    return number_value(*it, ptr + "/" + key, need);
+  }
+  T number_or(const Json& j, const std::string& ptr, const char* key, Need need, T dflt) const {
+    return j.contains(key) ? number(j, ptr, key, need) : dflt;
+  }
+  T number_value(const Json& v, const std::string& where, Need need) const {
+    const char* what = need == Need::positive       ? "a positive number"
+                       : need == Need::non_negative ? "a number >= 0"
+                                                    : "a finite number";
+    if (!v.is_number()) bad(where, std::string("expected ") + what + ", got " + describe(v));
+    const double d = v.get<double>();
+    if (!std::isfinite(d) || (need == Need::positive && !(d > 0)) ||
+        (need == Need::non_negative && !(d >= 0)))
+      bad(where, std::string("expected ") + what + ", got " + describe(v));
+    return T(d);
+  }
+  Vec3<T> vec3(const Json& j, const std::string& ptr, const char* key, Need need) const {
+    const auto it = j.find(key);
+    if (it == j.end()) bad(ptr, std::string("missing \"") + key + "\"");
+    return vec3_value(*it, ptr + "/" + key, need);
+  }
+  Vec3<T> vec3_or(const Json& j, const std::string& ptr, const char* key, Vec3<T> dflt) const {
+    return j.contains(key) ? vec3(j, ptr, key, Need::finite) : dflt;
+  }
+  Vec3<T> vec3_value(const Json& v, const std::string& where, Need need) const {
+    if (!v.is_array() || v.size() != 3)
+      bad(where, "expected an array of 3 numbers [x, y, z], got " + describe(v));
+    Vec3<T> r;
+    for (int a = 0; a < 3; ++a) r[a] = number_value(v[a], where + "/" + std::to_string(a), need);
+    return r;
+  }
+
+  Xform<T> parse_xform(const Json& j, const std::string& ptr) const {
+    Xform<T> x;
+    if (j.contains("scale")) x.s = number(j, ptr, "scale", Need::positive);
+    if (j.contains("rotate")) {
+      const Json& r = j["rotate"];
+      const std::string rp = ptr + "/rotate";
+      if (!r.is_object())
+        bad(rp, "expected {\"axis\": [x, y, z], \"degrees\": angle}, got " + describe(r));
+      for (auto it = r.begin(); it != r.end(); ++it)
+        if (it.key() != "axis" && it.key() != "degrees")
+          bad(rp + "/" + it.key(), "unknown key (rotate has: axis, degrees)");
+      Vec3<T> axis = vec3(r, rp, "axis", Need::finite);
+      if (!(norm(axis) > T(0))) bad(rp + "/axis", "the rotation axis must not be zero");
+      axis = normalized(axis);
+      const double ang = double(number(r, rp, "degrees", Need::finite)) * M_PI / 180.0;
+      const T c = T(std::cos(ang)), s = T(std::sin(ang)), C = T(1) - c;
+      const T x_ = axis.x, y = axis.y, z = axis.z;
+      x.r = {{c + x_ * x_ * C, x_ * y * C - z * s, x_ * z * C + y * s, //
+              y * x_ * C + z * s, c + y * y * C, y * z * C - x_ * s,   //
+              z * x_ * C - y * s, z * y * C + x_ * s, c + z * z * C}};
+    }
+    if (j.contains("translate")) x.t = vec3(j, ptr, "translate", Need::finite);
+    return x;
+  }
+
+  static Aabb<T> transform_box(const Xform<T>& x, const Aabb<T>& b) {
+    if (b.is_empty()) return b;
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a])) return Aabb<T>::infinite();
+    Aabb<T> r;
+    for (int c = 0; c < 8; ++c)
+      r.extend(x.to_world({(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y,
+                           (c & 4) ? b.hi.z : b.lo.z}));
+    return r;
+  }
+
+  Aabb<T> body(const std::string& type, const Json& j, const std::string& ptr, SdfKind& kind) {
+    if (type == "sphere") {
+      check_keys(j, ptr, type, {"center", "radius"});
+      const Vec3<T> c = vec3_or(j, ptr, "center", Vec3<T>::zero());
+      const T r = number(j, ptr, "radius", Need::positive);
+      prog_.code.push_back({Op::sphere, params({c.x, c.y, c.z, r}), 0});
+      return leaf(Aabb<T>::of(c).grown(r));
+    }
+    if (type == "box") {
+      check_keys(j, ptr, type, {"center", "size", "half_size", "rounding"});
+      const Vec3<T> c = vec3_or(j, ptr, "center", Vec3<T>::zero());
+      Vec3<T> h;
+      if (j.contains("size") == j.contains("half_size"))
+        bad(ptr, "a box needs exactly one of \"size\" (full edge lengths) or \"half_size\"");
+      if (j.contains("size"))
+        h = vec3(j, ptr, "size", Need::positive) * T(0.5);
+      else
+        h = vec3(j, ptr, "half_size", Need::positive);
+      const T r = number_or(j, ptr, "rounding", Need::non_negative, T(0));
+      if (r > min_component(h))
+        bad(ptr + "/rounding", "must not exceed the smallest half size");
+      prog_.code.push_back({Op::box, params({c.x, c.y, c.z, h.x, h.y, h.z, r}), 0});
+      return leaf(Aabb<T>(c - h, c + h));
+    }
+    if (type == "capsule" || type == "cylinder") {
+      check_keys(j, ptr, type, {"a", "b", "radius"});
+      const Vec3<T> a = vec3(j, ptr, "a", Need::finite), b = vec3(j, ptr, "b", Need::finite);
+      const T r = number(j, ptr, "radius", Need::positive);
+      if (type == "cylinder" && !(norm(b - a) > T(0)))
+        bad(ptr + "/b", "a cylinder needs distinct end points a and b");
+      prog_.code.push_back({type == "capsule" ? Op::capsule : Op::cylinder,
+                            params({a.x, a.y, a.z, b.x, b.y, b.z, r}), 0});
+      return leaf(Aabb<T>::of(a, b).grown(r));
+    }
+    if (type == "torus") {
+      check_keys(j, ptr, type, {"center", "major_radius", "minor_radius"});
+      const Vec3<T> c = vec3_or(j, ptr, "center", Vec3<T>::zero());
+      const T R = number(j, ptr, "major_radius", Need::positive);
+      const T r = number(j, ptr, "minor_radius", Need::positive);
+      prog_.code.push_back({Op::torus, params({c.x, c.y, c.z, R, r}), 0});
+      return leaf(Aabb<T>(c - Vec3<T>{R + r, R + r, r}, c + Vec3<T>{R + r, R + r, r}));
+    }
+    if (type == "plane") {
+      check_keys(j, ptr, type, {"normal", "point"});
+      Vec3<T> n = vec3(j, ptr, "normal", Need::finite);
+      if (!(norm(n) > T(0))) bad(ptr + "/normal", "the normal must not be zero");
+      n = normalized(n);
+      const Vec3<T> p = vec3_or(j, ptr, "point", Vec3<T>::zero());
+      prog_.code.push_back({Op::plane, params({n.x, n.y, n.z, dot(n, p)}), 0});
+      return leaf(Aabb<T>::infinite());
+    }
+    if (type == "mesh") return mesh(j, ptr, kind);
+    if (type == "union" || type == "intersection" || type == "difference") {
+      check_keys(j, ptr, type, {"children", "smooth"});
+      const auto ch = j.find("children");
+      if (ch == j.end()) bad(ptr, "missing \"children\" (an array of nodes)");
+      if (!ch->is_array() || ch->empty())
+        bad(ptr + "/children", "expected a non-empty array of nodes, got " + describe(*ch));
+      const T k = number_or(j, ptr, "smooth", Need::non_negative, T(0));
+      Aabb<T> b;
+      const std::size_t base = values_;
+      for (std::size_t i = 0; i < ch->size(); ++i) {
+        SdfKind ck = SdfKind::exact;
+        const Aabb<T> cb = node((*ch)[i], ptr + "/children/" + std::to_string(i), ck);
+        kind = weakest(kind, ck);
+        if (type == "union")
+          b.extend(cb);
+        else if (type == "intersection")
+          b = i == 0 ? cb : Aabb<T>(max(b.lo, cb.lo), min(b.hi, cb.hi));
+        else if (i == 0)
+          b = cb;
+      }
+      (void)base;
+      const Op op = type == "union" ? Op::unite : (type == "intersection" ? Op::intersect : Op::subtract);
+      prog_.code.push_back({op, param(k), std::uint32_t(ch->size())});
+      values_ -= ch->size() - 1;
+      if (ch->size() > 1) kind = weakest(kind, k > 0 ? SdfKind::implicit : SdfKind::bound);
+      if (k > 0 && type == "union") b = b.grown(k);
+      if (b.is_empty()) b = Aabb<T>(Vec3<T>::zero(), Vec3<T>::zero());
+      return b;
+    }
+    if (type == "transform") {
+      check_keys(j, ptr, type, {"child"});
+      const auto c = j.find("child");
+      if (c == j.end()) bad(ptr, "missing \"child\" (the node to transform)");
+      return node(*c, ptr + "/child", kind);
+    }
+    bad(ptr + "/type", "unknown node type \"" + type +
+                           "\" (expected sphere, box, capsule, cylinder, torus, plane, mesh, "
+                           "union, intersection, difference or transform)");
+  }
+
+  Aabb<T> leaf(const Aabb<T>& b) {
+    ++info_.primitives;
+    push_value();
+    return b;
+  }
+
+  Aabb<T> mesh(const Json& j, const std::string& ptr, SdfKind& kind) {
+    check_keys(j, ptr, "mesh",
+               {"path", "generate", "sign", "subdivisions", "radius", "major_radius",
+                "minor_radius", "min", "max"});
+    SignMode sign = SignMode::pseudonormal;
+    if (j.contains("sign")) {
+      if (!j["sign"].is_string()) bad(ptr + "/sign", "expected a string");
+      sign = parse_sign_mode(j["sign"].get<std::string>(), exit_input,
+                             file_ + ": " + ptr + "/sign");
+    }
+    PolygonSoup<T> soup;
+    std::string label;
+    if (j.contains("path") == j.contains("generate"))
+      bad(ptr, "a mesh needs exactly one of \"path\" (a mesh file) or \"generate\"");
+    if (j.contains("path")) {
+      if (!j["path"].is_string()) bad(ptr + "/path", "expected a file name string");
+      std::filesystem::path p = j["path"].get<std::string>();
+      if (p.is_relative() && !dir_.empty()) p = std::filesystem::path(dir_) / p;
+      label = p.string();
+      if (!std::filesystem::exists(p))
+        bad(ptr + "/path", "mesh file " + label + " does not exist");
+      soup = load_mesh<T>(label);
+    } else {
+      if (!j["generate"].is_string()) bad(ptr + "/generate", "expected a string");
+      const std::string g = j["generate"];
+      label = file_ + ": " + ptr;
+      Result<PolygonSoup<T>> r = make_error(ErrorCode::invalid_argument, "");
+      if (g == "icosphere") {
+        const T sub = number_or(j, ptr, "subdivisions", Need::non_negative, T(3));
+        if (sub != std::floor(sub) || sub > 7) bad(ptr + "/subdivisions", "expected 0 to 7");
+        r = make_icosphere<T>(int(sub), number_or(j, ptr, "radius", Need::positive, T(1)));
+      } else if (g == "torus") {
+        r = make_torus<T>(number(j, ptr, "major_radius", Need::positive),
+                          number(j, ptr, "minor_radius", Need::positive));
+      } else if (g == "box") {
+        r = make_box<T>(vec3(j, ptr, "min", Need::finite), vec3(j, ptr, "max", Need::finite));
+      } else if (g == "tetrahedron") {
+        r = make_tetrahedron<T>(number_or(j, ptr, "radius", Need::positive, T(1)));
+      } else if (g == "octahedron") {
+        r = make_octahedron<T>(number_or(j, ptr, "radius", Need::positive, T(1)));
+      } else if (g == "icosahedron") {
+        r = make_icosahedron<T>(number_or(j, ptr, "radius", Need::positive, T(1)));
+      } else {
+        bad(ptr + "/generate", "unknown generator \"" + g +
+                                   "\" (expected icosphere, torus, box, tetrahedron, "
+                                   "octahedron or icosahedron)");
+      }
+      if (!r) bad(ptr, r.error().what());
+      soup = std::move(*r);
+    }
+    auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, label));
+    const Aabb<T> b = sdf->bounds();
+    prog_.code.push_back(
+        {Op::mesh, std::uint32_t(prog_.meshes.size()), sign == SignMode::unsigned_distance ? 1u : 0u});
+    prog_.meshes.push_back(std::move(sdf));
+    ++info_.meshes;
+    if (sign == SignMode::unsigned_distance) kind = weakest(kind, SdfKind::implicit);
+    push_value();
+    return b;
+  }
+
+  std::string file_, dir_;
+  Program<T>& prog_;
+  SceneInfo& info_;
+  std::size_t values_ = 0, points_ = 0;
+};
+
+} // namespace detail
+
+/// Compiles the scene `doc` (read from `file`, used in messages and to resolve relative mesh
+/// paths) into a program. Throws CliError (input) naming the offending JSON pointer.
+template <class T> Program<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* info = nullptr) {
+  Program<T> prog;
+  SceneInfo si;
+  detail::SceneCompiler<T> c(file, prog, si);
+  const Json* root = &doc;
+  std::string ptr;
+  if (doc.is_object() && doc.contains("root")) {
+    for (auto it = doc.begin(); it != doc.end(); ++it)
+      if (it.key() != "root" && it.key() != "version" && it.key() != "description" &&
+          it.key() != "comment")
+        c.bad("/" + it.key(), "unknown top-level key (expected root, version, description)");
+    if (doc.contains("version") && doc["version"] != 1)
+      c.bad("/version", "unsupported scene version " + doc["version"].dump() + " (expected 1)");
+    root = &doc["root"];
+    ptr = "/root";
+  }
+  SdfKind kind = SdfKind::exact;
+  prog.box = c.node(*root, ptr, kind);
+  prog.scene_kind = kind;
+  if (info) *info = si;
+  return prog;
+}
+
+/// Reads and compiles a scene file.
+template <class T> Program<T> load_scene(const std::string& path, SceneInfo* info = nullptr) {
+  return compile_scene<T>(read_json_file(path), path, info);
+}
+
+/// A program evaluating one mesh file.
+template <class T>
+Program<T> mesh_program(const std::string& path, SignMode sign, PolygonSoup<T>* keep = nullptr) {
+  PolygonSoup<T> soup = load_mesh<T>(path);
+  Program<T> prog;
+  auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, path));
+  prog.box = sdf->bounds();
+  prog.code.push_back({Op::mesh, 0, sign == SignMode::unsigned_distance ? 1u : 0u});
+  prog.meshes.push_back(std::move(sdf));
+  prog.scene_kind = sign == SignMode::unsigned_distance ? SdfKind::implicit : SdfKind::exact;
+  if (keep) *keep = std::move(soup);
+  return prog;
+}
+
+} // namespace ebgeom::cli
