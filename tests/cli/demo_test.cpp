@@ -2,7 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "cli_support.hpp"
-#include "demo_scene.hpp"
+#include "ebgeom/mesh/generate.hpp"
+#include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
 
 using namespace ebgeom;
 using namespace ebgeom::clitest;
@@ -20,24 +21,40 @@ TEST(Demo, WritesVtiNpyPngThatAgreeWithTheLibrary) {
   ASSERT_EQ(npy.shape.size(), 3u);
   EXPECT_EQ(npy.descr, "<f4");
   EXPECT_FALSE(npy.fortran);
-  EXPECT_EQ(npy.shape[2], 24u); // x is the longest axis of the demo scene
+  EXPECT_EQ(*std::max_element(npy.shape.begin(), npy.shape.end()), 24u); // --res: longest axis
   EXPECT_EQ(std::size_t(vti.extent[1] + 1), npy.shape[2]);
   EXPECT_EQ(std::size_t(vti.extent[3] + 1), npy.shape[1]);
   EXPECT_EQ(std::size_t(vti.extent[5] + 1), npy.shape[0]);
   ASSERT_EQ(vti.data, npy.data);
 
-  // Every sample equals the scene evaluated at origin + (i, j, k) * spacing.
-  const auto scene = cli::make_demo_scene();
+  // Every sample equals the demo scene (tools/ebgeom/demo_scene.hpp) rebuilt here from closed
+  // forms and the library's mesh SDF of the same generated icosphere.
+  const auto ico = BruteForceMeshSdf<double>::build(make_icosphere<double>(2, 1.0).value()).value();
+  auto scene = [&](const Vec3<double>& p) {
+    const Vec3<double> q = abs(p - Vec3<double>{0.6, 0.6, 0.6}) - Vec3<double>::constant(0.5);
+    const double box = norm(max(q, Vec3<double>::zero())) + std::min(max_component(q), 0.0);
+    const double body = std::max(ico(p), -box);
+    const double c = std::cos(20 * M_PI / 180), s = std::sin(20 * M_PI / 180);
+    const Vec3<double> t{p.x, c * p.y + s * p.z, -s * p.y + c * p.z};
+    const double torus = std::hypot(std::hypot(t.x, t.y) - 1.5, t.z) - 0.2;
+    const Vec3<double> a{0, 0, 0.9}, ab{0, 0, 0.8};
+    const double h = std::clamp(dot(p - a, ab) / dot(ab, ab), 0.0, 1.0);
+    const double capsule = norm(p - (a + ab * h)) - 0.12;
+    const double ball = norm(p - Vec3<double>{0, 0, 1.9}) - 0.3;
+    const double k = 0.25, w = std::max(k - std::abs(capsule - ball), 0.0) / k;
+    const double mast = std::min(capsule, ball) - w * w * k / 4;
+    return std::min({body, torus, mast});
+  };
   const std::size_t nx = npy.shape[2], ny = npy.shape[1], nz = npy.shape[0];
   std::size_t inside = 0;
   for (std::size_t k = 0; k < nz; ++k)
     for (std::size_t j = 0; j < ny; ++j)
       for (std::size_t i = 0; i < nx; ++i) {
-        const Vec3<float> p{float(vti.origin[0] + double(i) * vti.spacing[0]),
-                            float(vti.origin[1] + double(j) * vti.spacing[1]),
-                            float(vti.origin[2] + double(k) * vti.spacing[2])};
+        const Vec3<double> p{vti.origin[0] + double(i) * vti.spacing[0],
+                             vti.origin[1] + double(j) * vti.spacing[1],
+                             vti.origin[2] + double(k) * vti.spacing[2]};
         const double got = npy.data[i + nx * (j + ny * k)];
-        ASSERT_NEAR(got, double(scene(p)), 1e-5) << i << " " << j << " " << k;
+        ASSERT_NEAR(got, scene(p), 2e-5) << i << " " << j << " " << k;
         inside += got < 0;
       }
   EXPECT_GT(inside, 0u);

@@ -7,6 +7,7 @@
 #include "common.hpp"
 #include "demo_scene.hpp"
 #include "grid_job.hpp"
+#include "scene.hpp"
 
 namespace ebgeom::cli {
 
@@ -21,9 +22,10 @@ struct DemoOptions {
 
 int run_demo(const DemoOptions& o) {
   const double t0 = now_s();
-  const auto scene = make_demo_scene();
-  const double t1 = now_s();
   using T = float;
+  SceneInfo info;
+  const Program<T> scene = compile_scene<T>(Json::parse(demo_scene_json()), "<demo>", &info);
+  const double t1 = now_s();
   const Aabb<T> b = scene.bounds();
   const T pad = T(0.1) * max_component(b.extent());
   GridSpec<T> spec = GridSpec<T>::cells(b.grown(pad), o.res);
@@ -48,11 +50,13 @@ int run_demo(const DemoOptions& o) {
   const Span<const T> v(values);
   write_grid_or_fail(vti, spec, v, DType::float32);
   write_grid_or_fail(npy, spec, v, DType::float32);
-  const PngInfo img = write_png_slice(png, extract_slice(spec, v, SliceSpec{2, 0.5}));
+  const PngInfo img = write_png_slice(png, extract_slice(spec, v, SliceSpec{1, 0.5}));
   const double t3 = now_s();
   const GridStats st = grid_stats(v);
 
-  std::printf("ebgeom demo: %s\n", demo_scene_description().c_str());
+  std::printf("ebgeom demo: %s\n", demo_scene_description());
+  std::printf("  scene     %zu nodes, %zu analytic primitives, %zu mesh (%zu triangles)\n",
+              info.nodes, info.primitives, info.meshes, scene.triangle_count());
   std::printf("  grid      %zu x %zu x %zu cell-centred samples, spacing %.4g, box [%.3g %.3g "
               "%.3g] - [%.3g %.3g %.3g]\n",
               spec.nx(), spec.ny(), spec.nz(), double(h), double(spec.box.lo.x),
@@ -63,7 +67,7 @@ int run_demo(const DemoOptions& o) {
   std::printf("  time      build %.3f s  eval %.3f s  write %.3f s  (%d threads)\n", t1 - t0,
               t2 - t1, t3 - t2, resolve_threads(gopt.exec));
   std::printf("  wrote     %s (ParaView)\n            %s (NumPy, shape (%zu, %zu, %zu), float32)\n"
-              "            %s (%d x %d slice z = middle)\n",
+              "            %s (%d x %d slice y = middle)\n",
               vti.c_str(), npy.c_str(), spec.nz(), spec.ny(), spec.nx(), png.c_str(), img.width,
               img.height);
   return exit_ok;

@@ -1,35 +1,34 @@
 #pragma once
-// The demo scene: analytic shapes combined with CSG (interim: closed forms here until the shape
-// module lands on main).
-
-#include <algorithm>
-#include <string>
-
-#include "ebgeom/core/aabb.hpp"
-#include "ebgeom/core/vec.hpp"
-#include "ebgeom/sdf/concepts.hpp"
+// The demo scene: analytic shapes, CSG (sharp and smooth) and a procedurally generated mesh,
+// written in the scene format (docs/scene-format.md) and compiled like any scene file.
 
 namespace ebgeom::cli {
 
-/// Sphere of radius 1 minus a box corner, united with a torus around it.
-struct DemoScene {
-  using scalar_type = float;
-  static constexpr SdfKind kind = SdfKind::bound;
-  float operator()(const Vec3<float>& p) const noexcept {
-    const float sphere = norm(p) - 1.0f;
-    const Vec3<float> q = abs(p - Vec3<float>{0.6f, 0.6f, 0.6f}) - Vec3<float>::constant(0.5f);
-    const float box = norm(max(q, Vec3<float>::zero())) + std::min(max_component(q), 0.0f);
-    const float body = std::max(sphere, -box);
-    const float qx = std::sqrt(p.x * p.x + p.y * p.y) - 1.5f;
-    const float torus = std::sqrt(qx * qx + p.z * p.z) - 0.2f;
-    return std::min(body, torus);
+/// The demo scene as scene-format JSON.
+inline const char* demo_scene_json() {
+  return R"({
+  "version": 1,
+  "description": "icosphere mesh minus a box, a torus ring, and a smooth capsule-and-sphere mast",
+  "root": {
+    "type": "union",
+    "children": [
+      {"type": "difference", "children": [
+        {"type": "mesh", "generate": "icosphere", "subdivisions": 2, "radius": 1.0},
+        {"type": "box", "center": [0.6, 0.6, 0.6], "half_size": [0.5, 0.5, 0.5]}
+      ]},
+      {"type": "torus", "major_radius": 1.5, "minor_radius": 0.2,
+       "rotate": {"axis": [1, 0, 0], "degrees": 20}},
+      {"type": "union", "smooth": 0.25, "children": [
+        {"type": "capsule", "a": [0, 0, 0.9], "b": [0, 0, 1.7], "radius": 0.12},
+        {"type": "sphere", "center": [0, 0, 1.9], "radius": 0.3}
+      ]}
+    ]
   }
-  Aabb<float> bounds() const noexcept { return Aabb<float>({-1.7f, -1.7f, -1}, {1.7f, 1.7f, 1}); }
-};
+})";
+}
 
-inline DemoScene make_demo_scene() { return {}; }
-inline std::string demo_scene_description() {
-  return "sphere minus box, united with a torus (analytic, CSG)";
+inline const char* demo_scene_description() {
+  return "icosphere mesh (320 triangles) minus a box, a rotated torus, a smooth capsule + sphere";
 }
 
 } // namespace ebgeom::cli

@@ -162,9 +162,8 @@ template <class T> class Program {
           const T x = norm(pa * baba - ba * paba) - r * baba;
           const T y = std::abs(paba - baba * T(0.5)) - baba * T(0.5);
           const T x2 = x * x, y2 = y * y * baba;
-          const T d = std::max(x, y) < T(0)
-                          ? -std::min(x2, y2)
-                          : ((x > T(0) ? x2 : T(0)) + (y > T(0) ? y2 : T(0)));
+          const T d = std::max(x, y) < T(0) ? -std::min(x2, y2)
+                                            : ((x > T(0) ? x2 : T(0)) + (y > T(0) ? y2 : T(0)));
           v[i] = std::copysign(std::sqrt(std::abs(d)), d) / baba;
         }
         ++vt;

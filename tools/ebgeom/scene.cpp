@@ -35,8 +35,9 @@ SignMode parse_sign_mode(const std::string& s, int code, const std::string& wher
   if (s == "winding" || s == "fast-winding" || s == "auto")
     fail(code, where + ": sign mode '" + s +
                    "' is not available yet in this version (available: pseudonormal, unsigned)");
-  fail(code, where + ": unknown sign mode '" + s +
-                 "' (expected pseudonormal or unsigned; winding, fast-winding and auto are planned)");
+  fail(code,
+       where + ": unknown sign mode '" + s +
+           "' (expected pseudonormal or unsigned; winding, fast-winding and auto are planned)");
 }
 
 const char* to_string(SignMode m) {

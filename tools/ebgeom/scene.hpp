@@ -62,8 +62,9 @@ template <class T> class SceneCompiler {
     if (!j.is_object()) bad(ptr, "expected a node object {\"type\": ...}, got " + describe(j));
     ++info_.nodes;
     const auto t = j.find("type");
-    if (t == j.end()) bad(ptr, "missing \"type\" (sphere, box, capsule, cylinder, torus, plane, "
-                               "mesh, union, intersection, difference, transform)");
+    if (t == j.end())
+      bad(ptr, "missing \"type\" (sphere, box, capsule, cylinder, torus, plane, "
+               "mesh, union, intersection, difference, transform)");
     if (!t->is_string()) bad(ptr + "/type", "expected a string, got " + describe(*t));
     const std::string type = *t;
 
@@ -116,8 +117,8 @@ template <class T> class SceneCompiler {
 
   void check_keys(const Json& j, const std::string& ptr, const std::string& type,
                   std::initializer_list<const char*> allowed) const {
-    static const char* common[] = {"type", "name", "comment", "translate", "rotate",
-                                   "scale", "offset", "shell"};
+    static const char* common[] = {"type",   "name",  "comment", "translate",
+                                   "rotate", "scale", "offset",  "shell"};
     for (auto it = j.begin(); it != j.end(); ++it) {
       bool ok = false;
       for (const char* c : common) ok = ok || it.key() == c;
@@ -125,8 +126,8 @@ template <class T> class SceneCompiler {
       if (!ok) {
         std::string list;
         for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
-        bad(ptr + "/" + it.key(), "unknown key for a " + type + " (its keys: " +
-                                      (list.empty() ? std::string("none") : list) +
+        bad(ptr + "/" + it.key(), "unknown key for a " + type +
+                                      " (its keys: " + (list.empty() ? std::string("none") : list) +
                                       "; any node: name, translate, rotate, scale, offset, shell)");
       }
     }
@@ -198,8 +199,8 @@ template <class T> class SceneCompiler {
       if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a])) return Aabb<T>::infinite();
     Aabb<T> r;
     for (int c = 0; c < 8; ++c)
-      r.extend(x.to_world({(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y,
-                           (c & 4) ? b.hi.z : b.lo.z}));
+      r.extend(x.to_world(
+          {(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z}));
     return r;
   }
 
@@ -222,8 +223,7 @@ template <class T> class SceneCompiler {
       else
         h = vec3(j, ptr, "half_size", Need::positive);
       const T r = number_or(j, ptr, "rounding", Need::non_negative, T(0));
-      if (r > min_component(h))
-        bad(ptr + "/rounding", "must not exceed the smallest half size");
+      if (r > min_component(h)) bad(ptr + "/rounding", "must not exceed the smallest half size");
       prog_.code.push_back({Op::box, params({c.x, c.y, c.z, h.x, h.y, h.z, r}), 0});
       return leaf(Aabb<T>(c - h, c + h));
     }
@@ -276,7 +276,8 @@ template <class T> class SceneCompiler {
           b = cb;
       }
       (void)base;
-      const Op op = type == "union" ? Op::unite : (type == "intersection" ? Op::intersect : Op::subtract);
+      const Op op =
+          type == "union" ? Op::unite : (type == "intersection" ? Op::intersect : Op::subtract);
       prog_.code.push_back({op, param(k), std::uint32_t(ch->size())});
       values_ -= ch->size() - 1;
       if (ch->size() > 1) kind = weakest(kind, k > 0 ? SdfKind::implicit : SdfKind::bound);
@@ -308,8 +309,8 @@ template <class T> class SceneCompiler {
     SignMode sign = SignMode::pseudonormal;
     if (j.contains("sign")) {
       if (!j["sign"].is_string()) bad(ptr + "/sign", "expected a string");
-      sign = parse_sign_mode(j["sign"].get<std::string>(), exit_input,
-                             file_ + ": " + ptr + "/sign");
+      sign =
+          parse_sign_mode(j["sign"].get<std::string>(), exit_input, file_ + ": " + ptr + "/sign");
     }
     PolygonSoup<T> soup;
     std::string label;
@@ -320,8 +321,7 @@ template <class T> class SceneCompiler {
       std::filesystem::path p = j["path"].get<std::string>();
       if (p.is_relative() && !dir_.empty()) p = std::filesystem::path(dir_) / p;
       label = p.string();
-      if (!std::filesystem::exists(p))
-        bad(ptr + "/path", "mesh file " + label + " does not exist");
+      if (!std::filesystem::exists(p)) bad(ptr + "/path", "mesh file " + label + " does not exist");
       soup = load_mesh<T>(label);
     } else {
       if (!j["generate"].is_string()) bad(ptr + "/generate", "expected a string");
@@ -353,8 +353,8 @@ template <class T> class SceneCompiler {
     }
     auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, label));
     const Aabb<T> b = sdf->bounds();
-    prog_.code.push_back(
-        {Op::mesh, std::uint32_t(prog_.meshes.size()), sign == SignMode::unsigned_distance ? 1u : 0u});
+    prog_.code.push_back({Op::mesh, std::uint32_t(prog_.meshes.size()),
+                          sign == SignMode::unsigned_distance ? 1u : 0u});
     prog_.meshes.push_back(std::move(sdf));
     ++info_.meshes;
     if (sign == SignMode::unsigned_distance) kind = weakest(kind, SdfKind::implicit);
@@ -372,7 +372,8 @@ template <class T> class SceneCompiler {
 
 /// Compiles the scene `doc` (read from `file`, used in messages and to resolve relative mesh
 /// paths) into a program. Throws CliError (input) naming the offending JSON pointer.
-template <class T> Program<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* info = nullptr) {
+template <class T>
+Program<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* info = nullptr) {
   Program<T> prog;
   SceneInfo si;
   detail::SceneCompiler<T> c(file, prog, si);

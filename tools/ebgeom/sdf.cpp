@@ -32,12 +32,12 @@ template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bou
   GridSpec<T> spec;
   spec.centering = o.nodes ? Centering::node : Centering::cell;
   if (!o.box.empty()) {
-    spec.box = Aabb<T>({T(o.box[0]), T(o.box[1]), T(o.box[2])},
-                       {T(o.box[3]), T(o.box[4]), T(o.box[5])});
+    spec.box =
+        Aabb<T>({T(o.box[0]), T(o.box[1]), T(o.box[2])}, {T(o.box[3]), T(o.box[4]), T(o.box[5])});
     for (int a = 0; a < 3; ++a)
       if (!(spec.box.lo[a] < spec.box.hi[a]))
-        fail(exit_usage, std::string("--box: X0 Y0 Z0 must be below X1 Y1 Z1 (axis ") + "xyz"[a] +
-                             ")");
+        fail(exit_usage,
+             std::string("--box: X0 Y0 Z0 must be below X1 Y1 Z1 (axis ") + "xyz"[a] + ")");
   } else {
     for (int a = 0; a < 3; ++a)
       if (!std::isfinite(bounds.lo[a]) || !std::isfinite(bounds.hi[a]))
@@ -76,6 +76,15 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   SliceSpec slice;
   if (!o.png.empty()) slice = parse_slice(o.slice);
   if (!std::filesystem::exists(o.input)) fail(exit_input, o.input + ": no such file");
+  {
+    std::error_code ec;
+    auto same = [&](const std::string& out) {
+      return std::filesystem::exists(out) && std::filesystem::equivalent(out, o.input, ec);
+    };
+    if (same(o.output) || (*fmt == GridFormat::raw && same(raw_sidecar_path(o.output))) ||
+        (!o.png.empty() && same(o.png)))
+      fail(exit_usage, o.output + ": writing it would overwrite the input " + o.input);
+  }
 
   const double t0 = now_s();
   Program<T> prog;
@@ -101,11 +110,13 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   const Vec3<T> h = spec.spacing();
   require_memory(std::uint64_t(spec.size()) * sizeof(T),
                  "a " + std::to_string(spec.nx()) + " x " + std::to_string(spec.ny()) + " x " +
-                     std::to_string(spec.nz()) + " grid of " + (sizeof(T) == 4 ? "float" : "double"));
+                     std::to_string(spec.nz()) + " grid of " +
+                     (sizeof(T) == 4 ? "float" : "double"));
   GridOptions gopt;
   gopt.exec.threads = o.threads;
   gopt.band = o.band * double(max_component(h));
-  const auto values = sample_with_progress(prog, spec, gopt, !o.quiet && !o.json && stderr_is_terminal());
+  const auto values =
+      sample_with_progress(prog, spec, gopt, !o.quiet && !o.json && stderr_is_terminal());
   const double t3 = now_s();
   const Span<const T> v(values);
   write_grid_or_fail(o.output, spec, v, sizeof(T) == 4 ? DType::float32 : DType::float64);
@@ -130,8 +141,8 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     j["centering"] = to_string(spec.centering);
     j["precision"] = sizeof(T) == 4 ? "float" : "double";
     j["band"] = gopt.band;
-    j["timings"] = {{"parse_s", t1 - t0}, {"build_s", t2 - t1}, {"eval_s", t3 - t2},
-                    {"write_s", t4 - t3}};
+    j["timings"] = {
+        {"parse_s", t1 - t0}, {"build_s", t2 - t1}, {"eval_s", t3 - t2}, {"write_s", t4 - t3}};
     j["min"] = st.min;
     j["max"] = st.max;
     j["inside_fraction"] = st.inside_fraction;
@@ -184,7 +195,8 @@ Subcommand add_sdf(CLI::App& app) {
   sub->add_option("--precision", o->precision, "float or double (computation and output)")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
-  sub->add_option("--threads", o->threads, "threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  sub->add_option("--threads", o->threads, "threads (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
   auto* png = sub->add_option("--png", o->png, "also write a PNG slice of the grid");
   sub->add_option("--slice", o->slice, "slice of the PNG: x, y or z, optionally =FRACTION")
       ->needs(png)
@@ -192,10 +204,11 @@ Subcommand add_sdf(CLI::App& app) {
   sub->add_flag("--nodes", o->nodes, "node-centred samples (include the box faces)");
   sub->add_flag("--json", o->json, "print a JSON summary on stdout");
   sub->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
-  sub->footer("Examples:\n"
-              "  ebgeom sdf bunny.obj -o bunny.vti --res 128\n"
-              "  ebgeom sdf part.stl -o part.npy --dx 0.01 --precision double --json\n"
-              "  ebgeom sdf examples/scenes/csg.json -o csg.raw --res 96 --png csg.png --slice y=0.5");
+  sub->footer(
+      "Examples:\n"
+      "  ebgeom sdf bunny.obj -o bunny.vti --res 128\n"
+      "  ebgeom sdf part.stl -o part.npy --dx 0.01 --precision double --json\n"
+      "  ebgeom sdf examples/scenes/csg.json -o csg.raw --res 96 --png csg.png --slice y=0.5");
   sub->callback([o, res] {
     if (!o->res.empty() && o->res.size() != 1 && o->res.size() != 3)
       throw CLI::ValidationError("--res", "expects N or NX NY NZ");
