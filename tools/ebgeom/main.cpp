@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
   std::vector<Subcommand> subs;
   subs.push_back(add_demo(app));
   subs.push_back(add_sdf(app));
+  subs.push_back(add_query(app));
+  subs.push_back(add_convert(app));
+  if (Subcommand info = add_info(app); info.app) subs.push_back(info);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,99 @@
+// `ebgeom info MESH [--json]`: counts, bounding box and the validation report of a mesh.
+#include "commands.hpp"
+
+#if __has_include("ebgeom/mesh/validate.hpp")
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "common.hpp"
+#include "ebgeom/mesh/validate.hpp"
+#include "mesh_input.hpp"
+#include "scene.hpp"
+
+namespace ebgeom::cli {
+
+namespace {
+
+struct InfoOptions {
+  std::string input;
+  bool json = false;
+};
+
+int run_info(const InfoOptions& o) {
+  if (!std::filesystem::exists(o.input)) fail(exit_input, o.input + ": no such file");
+  const PolygonSoup<double> soup = load_mesh<double>(o.input);
+  const ValidationReport<double> r = validate(soup);
+  const bool watertight = r.boundary_edges.empty() && r.non_manifold_edges.empty();
+  const bool oriented = r.inconsistent_edges.empty();
+  const Aabb<double>& b = r.bounds;
+  if (o.json) {
+    Json j;
+    j["input"] = o.input;
+    j["vertices"] = r.vertex_count;
+    j["faces"] = r.face_count;
+    j["triangles"] = soup.triangle_count();
+    j["edges"] = r.edge_count;
+    j["boundary_edges"] = r.boundary_edges.count;
+    j["holes"] = r.holes;
+    j["non_manifold_edges"] = r.non_manifold_edges.count;
+    j["non_manifold_vertices"] = r.non_manifold_vertices.count;
+    j["inconsistent_edges"] = r.inconsistent_edges.count;
+    j["degenerate_faces"] = r.degenerate_faces.count;
+    j["duplicate_faces"] = r.duplicate_faces.count;
+    j["isolated_vertices"] = r.isolated_vertices.count;
+    j["bad_index_faces"] = r.bad_index_faces.count;
+    j["short_faces"] = r.short_faces.count;
+    j["non_finite_vertices"] = r.non_finite_vertices.count;
+    j["watertight"] = watertight;
+    j["consistently_oriented"] = oriented;
+    j["outward"] = r.signed_volume > 0;
+    j["area"] = r.area;
+    j["volume"] = r.signed_volume;
+    if (b.is_empty())
+      j["bbox"] = nullptr;
+    else
+      j["bbox"] = {{"lo", {b.lo.x, b.lo.y, b.lo.z}}, {"hi", {b.hi.x, b.hi.y, b.hi.z}}};
+    j["sdf_well_defined"] = r.sdf_well_defined;
+    j["verdict"] = r.verdict;
+    std::printf("%s\n", j.dump(2).c_str());
+    return exit_ok;
+  }
+  std::printf("%s\n", o.input.c_str());
+  std::printf("  vertices %zu, faces %zu, triangles %zu, edges %zu\n", r.vertex_count, r.face_count,
+              soup.triangle_count(), r.edge_count);
+  if (!b.is_empty())
+    std::printf("  bbox     [%.6g %.6g %.6g] - [%.6g %.6g %.6g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x,
+                b.hi.y, b.hi.z);
+  std::printf("  area     %.6g   volume %.6g\n", r.area, r.signed_volume);
+  std::printf("  watertight %s (boundary edges %zu in %zu holes, non-manifold edges %zu, "
+              "vertices %zu)\n",
+              watertight ? "yes" : "no", r.boundary_edges.count, r.holes,
+              r.non_manifold_edges.count, r.non_manifold_vertices.count);
+  std::printf("  consistently oriented %s (inconsistent edges %zu), %s\n", oriented ? "yes" : "no",
+              r.inconsistent_edges.count, r.signed_volume > 0 ? "outward" : "inward or open");
+  std::printf("  degenerate faces %zu, duplicate faces %zu, isolated vertices %zu\n",
+              r.degenerate_faces.count, r.duplicate_faces.count, r.isolated_vertices.count);
+  std::printf("  %s\n", r.verdict.c_str());
+  return exit_ok;
+}
+
+} // namespace
+
+Subcommand add_info(CLI::App& app) {
+  auto o = std::make_shared<InfoOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "info", "Mesh counts, bounding box and validation report (is the SDF well defined?)");
+  sub->add_option("MESH", o->input, "mesh file (STL, PLY, OBJ, VTK)")->required();
+  sub->add_flag("--json", o->json, "print the report as one JSON object");
+  sub->footer("Example:\n  ebgeom info bunny.obj --json");
+  return {sub, [o] { return run_info(*o); }};
+}
+
+} // namespace ebgeom::cli
+
+#else
+namespace ebgeom::cli {
+Subcommand add_info(CLI::App&) { return {}; }
+} // namespace ebgeom::cli
+#endif
