@@ -174,10 +174,15 @@ TEST(SceneNodes, GeneratedMeshesMatchTheLibrary) {
               [&](const V& p) { return std::abs(tor(p)); }, 1e-12, 6);
 }
 
-TEST(SceneFiles, ExamplesCompileAndMatchTheirZeroSetSigns) {
-  for (const char* name : {"csg", "smooth_blobs", "mesh_and_shapes"}) {
+TEST(SceneFiles, EveryExampleSceneRuns) {
+  std::size_t count = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(EBGEOM_SOURCE_DIR) + "/examples/scenes")) {
+    if (entry.path().extension() != ".json") continue;
+    ++count;
+    const std::string name = entry.path().filename().string();
     const std::string dir = test_dir();
-    const std::string in = std::string(EBGEOM_SOURCE_DIR) + "/examples/scenes/" + name + ".json";
+    const std::string in = entry.path().string();
     const RunResult r = run("sdf '" + in + "' -o '" + dir + "/x.vti' --res 12 --json");
     ASSERT_EQ(r.code, 0) << name << ": " << r.err;
     const auto j = nlohmann::json::parse(r.out);
@@ -186,6 +191,7 @@ TEST(SceneFiles, ExamplesCompileAndMatchTheirZeroSetSigns) {
     const Vti v = read_vti(dir + "/x.vti");
     EXPECT_EQ(v.data.size(), 12u * 12 * 12);
   }
+  EXPECT_GE(count, 3u);
 }
 
 TEST(SdfCommand, OutputsAgreeAcrossFormatsAndWithTheJsonSummary) {
