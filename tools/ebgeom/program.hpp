@@ -16,8 +16,8 @@
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
-#include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
 #include "ebgeom/sdf/concepts.hpp"
+#include "mesh_input.hpp"
 
 namespace ebgeom::cli {
 
@@ -84,7 +84,7 @@ template <class T> class Program {
   std::vector<Instr> code;
   std::vector<T> params;
   std::vector<Xform<T>> xforms;
-  std::vector<std::shared_ptr<const BruteForceMeshSdf<T>>> meshes;
+  std::vector<std::shared_ptr<const CliMeshSdf<T>>> meshes;
   Aabb<T> box = Aabb<T>::infinite();
   SdfKind scene_kind = SdfKind::exact;
   std::size_t max_values = 1, max_points = 1; // stack depths proven by the compiler
