@@ -377,3 +377,13 @@ TEST(SdfErrors, HugeGridsAreRefusedWithTheRequiredSize) {
   EXPECT_NE(r.err.find("needs 14.6 TiB"), std::string::npos) << r.err;
   EXPECT_FALSE(exists(dir + "/x.npy"));
 }
+
+TEST(SdfErrors, DeeplyNestedScenesAreRefused) {
+  const std::string dir = test_dir();
+  std::string scene = R"({"type": "sphere", "radius": 1})";
+  for (int i = 0; i < 300; ++i) scene = R"({"type": "transform", "child": )" + scene + "}";
+  write_text(dir + "/deep.json", scene);
+  const RunResult r = run("sdf '" + dir + "/deep.json' -o '" + dir + "/x.npy' --res 4");
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("nested deeper than"), std::string::npos) << r.err;
+}

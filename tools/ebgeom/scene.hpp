@@ -60,6 +60,7 @@ template <class T> class SceneCompiler {
   /// Compiles a node; returns its bounds. Tracks stack depths.
   Aabb<T> node(const Json& j, const std::string& ptr, SdfKind& kind) {
     if (!j.is_object()) bad(ptr, "expected a node object {\"type\": ...}, got " + describe(j));
+    if (++depth_ > max_depth) bad(ptr, "nodes are nested deeper than " + std::to_string(max_depth));
     ++info_.nodes;
     const auto t = j.find("type");
     if (t == j.end())
@@ -95,6 +96,7 @@ template <class T> class SceneCompiler {
       prog_.code.push_back({Op::shell, param(s), 0});
       b = b.grown(s);
     }
+    --depth_;
     return b;
   }
 
@@ -366,6 +368,8 @@ template <class T> class SceneCompiler {
   Program<T>& prog_;
   SceneInfo& info_;
   std::size_t values_ = 0, points_ = 0;
+  std::size_t depth_ = 0;
+  static constexpr std::size_t max_depth = 200;
 };
 
 } // namespace detail
