@@ -105,27 +105,29 @@ template <class T> class Program {
 
   /// out[i] = S(points[i]). Thread-safe.
   void eval(Span<const Vec3<T>> points, Span<T> out) const {
-    std::vector<T> vals(max_values * batch);
-    std::vector<Vec3<T>> pts((max_points + 1) * batch);
-    for (std::size_t s = 0; s < points.size(); s += batch) {
-      const std::size_t n = std::min(batch, points.size() - s);
-      run(points.subspan(s, n), vals.data(), pts.data());
+    // Buffers sized for this call (one value per point for scalar calls).
+    const std::size_t stride = std::max<std::size_t>(1, std::min(batch, points.size()));
+    std::vector<T> vals(max_values * stride);
+    std::vector<Vec3<T>> pts((max_points + 1) * stride);
+    for (std::size_t s = 0; s < points.size(); s += stride) {
+      const std::size_t n = std::min(stride, points.size() - s);
+      run(points.subspan(s, n), vals.data(), pts.data(), stride);
       for (std::size_t i = 0; i < n; ++i) out[s + i] = vals[i];
     }
   }
 
  private:
-  void run(Span<const Vec3<T>> in, T* vals, Vec3<T>* pts) const {
+  void run(Span<const Vec3<T>> in, T* vals, Vec3<T>* pts, std::size_t stride) const {
     const std::size_t n = in.size();
     std::size_t vt = 0; // value stack height
     std::size_t pt = 0; // point stack height (0 = the input)
     auto P = [&](std::size_t level) -> const Vec3<T>* {
-      return level == 0 ? in.data() : pts + (level - 1) * batch;
+      return level == 0 ? in.data() : pts + (level - 1) * stride;
     };
     for (const Instr& ins : code) {
       const T* q = params.data() + ins.a;
       const Vec3<T>* p = P(pt);
-      T* v = vals + vt * batch;
+      T* v = vals + vt * stride;
       switch (ins.op) {
       case Op::sphere: {
         const Vec3<T> c{q[0], q[1], q[2]};
@@ -195,14 +197,14 @@ template <class T> class Program {
       }
       case Op::push_xform: {
         const Xform<T>& x = xforms[ins.a];
-        Vec3<T>* o = pts + pt * batch;
+        Vec3<T>* o = pts + pt * stride;
         for (std::size_t i = 0; i < n; ++i) o[i] = x.to_local(p[i]);
         ++pt;
         break;
       }
       case Op::pop_xform: {
         const T s = xforms[ins.a].s;
-        T* top = vals + (vt - 1) * batch;
+        T* top = vals + (vt - 1) * stride;
         if (s != T(1))
           for (std::size_t i = 0; i < n; ++i) top[i] *= s;
         --pt;
@@ -212,9 +214,9 @@ template <class T> class Program {
       case Op::intersect:
       case Op::subtract: {
         const T k = q[0];
-        T* first = vals + (vt - ins.n) * batch;
+        T* first = vals + (vt - ins.n) * stride;
         for (std::uint32_t c = 1; c < ins.n; ++c) {
-          const T* other = first + c * batch;
+          const T* other = first + c * stride;
           if (ins.op == Op::unite)
             for (std::size_t i = 0; i < n; ++i) first[i] = detail::smin(first[i], other[i], k);
           else if (ins.op == Op::intersect)
@@ -226,12 +228,12 @@ template <class T> class Program {
         break;
       }
       case Op::offset: {
-        T* top = vals + (vt - 1) * batch;
+        T* top = vals + (vt - 1) * stride;
         for (std::size_t i = 0; i < n; ++i) top[i] -= q[0];
         break;
       }
       case Op::shell: {
-        T* top = vals + (vt - 1) * batch;
+        T* top = vals + (vt - 1) * stride;
         for (std::size_t i = 0; i < n; ++i) top[i] = std::abs(top[i]) - q[0];
         break;
       }
