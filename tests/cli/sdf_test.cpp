@@ -387,3 +387,51 @@ TEST(SdfErrors, DeeplyNestedScenesAreRefused) {
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("nested deeper than"), std::string::npos) << r.err;
 }
+
+TEST(SceneNodes, AcceleratedUnionEqualsThePlainUnion) {
+  const std::string dir = test_dir();
+  // 60 spheres, a box and a generated mesh; then a mixed one with a smooth (non-exact) child.
+  std::string kids;
+  for (int i = 0; i < 60; ++i) {
+    const double x = -1.5 + 0.05 * i, y = std::sin(i * 0.7), z = std::cos(i * 1.3);
+    kids += R"({"type": "sphere", "center": [)" + std::to_string(x) + ", " + std::to_string(y) +
+            ", " + std::to_string(z) + R"(], "radius": 0.15}, )";
+  }
+  kids += R"({"type": "box", "center": [1, 1, 1], "half_size": [0.2, 0.3, 0.1]}, )";
+  kids += R"({"type": "mesh", "generate": "icosphere", "subdivisions": 1, "radius": 0.4})";
+  const std::string mixed = kids + R"(, {"type": "union", "smooth": 0.2, "children": [
+      {"type": "sphere", "radius": 0.3}, {"type": "box", "half_size": [0.2, 0.2, 0.6]}]})";
+  for (const std::string& k : {kids, mixed}) {
+    write_text(dir + "/plain.json", R"({"type": "union", "children": [)" + k + "]}");
+    write_text(dir + "/fast.json",
+               R"({"type": "union", "accelerate": true, "children": [)" + k + "]}");
+    const std::string opts = " --res 20 --box -2 -2 -2 2 2 2 --precision double -q";
+    RunResult r = run("sdf '" + dir + "/plain.json' -o '" + dir + "/plain.npy'" + opts);
+    ASSERT_EQ(r.code, 0) << r.err;
+    r = run("sdf '" + dir + "/fast.json' -o '" + dir + "/fast.npy'" + opts);
+#if __has_include("ebgeom/sdf/bvh_union.hpp")
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(slurp(dir + "/plain.npy"), slurp(dir + "/fast.npy")); // bit for bit
+#else
+    EXPECT_EQ(r.code, 3) << r.err;
+    EXPECT_NE(r.err.find("/accelerate: BVH-accelerated unions are not available"),
+              std::string::npos)
+        << r.err;
+#endif
+  }
+#if __has_include("ebgeom/sdf/bvh_union.hpp")
+  write_text(dir + "/s.json", R"({"type": "union", "accelerate": true, "smooth": 0.1,
+      "children": [{"type": "sphere", "radius": 1}]})");
+  RunResult r = run("sdf '" + dir + "/s.json' -o '" + dir + "/x.npy' --res 4");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("/accelerate: an accelerated union must be sharp"), std::string::npos)
+      << r.err;
+  write_text(dir + "/p.json", R"({"type": "union", "accelerate": true,
+      "children": [{"type": "sphere", "radius": 1}, {"type": "plane", "normal": [0, 0, 1]}]})");
+  r = run("sdf '" + dir + "/p.json' -o '" + dir + "/x.npy' --res 4 --box -1 -1 -1 1 1 1");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("/children/1: children of an accelerated union must be bounded"),
+            std::string::npos)
+      << r.err;
+#endif
+}

@@ -19,6 +19,13 @@
 #include "ebgeom/sdf/concepts.hpp"
 #include "mesh_input.hpp"
 
+#if __has_include("ebgeom/sdf/bvh_union.hpp")
+#include "ebgeom/sdf/bvh_union.hpp"
+#define EBGEOM_CLI_HAS_BVH_UNION 1
+#else
+#define EBGEOM_CLI_HAS_BVH_UNION 0
+#endif
+
 namespace ebgeom::cli {
 
 enum class Op : std::uint8_t {
@@ -36,6 +43,7 @@ enum class Op : std::uint8_t {
   subtract,   // n operands (first minus the others); p: k
   offset,     // p: r        value - r
   shell,      // p: t        |value| - t
+  bvh_union,  // a: union index; n = 1: children are exact (pruned), 0: not (linear)
 };
 
 /// One tape instruction: 12 B.
@@ -74,6 +82,23 @@ template <class T> inline T smin(T a, T b, T k) noexcept {
 template <class T> inline T smax(T a, T b, T k) noexcept { return -smin(-a, -b, k); }
 } // namespace detail
 
+template <class T> class Program;
+
+/// A compiled subtree used as one operand of a BVH union. `K` is its kind: `exact` operands let
+/// the union prune (S >= distance to the box outside it), others are scanned.
+template <class T, SdfKind K> struct Piece {
+  using scalar_type = T;
+  static constexpr SdfKind kind = K;
+  std::shared_ptr<const Program<T>> prog;
+  T operator()(const Vec3<T>& p) const noexcept { return (*prog)(p); }
+  Aabb<T> bounds() const noexcept { return prog->bounds(); }
+};
+
+#if EBGEOM_CLI_HAS_BVH_UNION
+template <class T> using ExactUnion = BvhUnion<Piece<T, SdfKind::exact>>;
+template <class T> using BoundUnion = BvhUnion<Piece<T, SdfKind::implicit>>;
+#endif
+
 template <class T> class Program {
  public:
   using scalar_type = T;
@@ -85,6 +110,11 @@ template <class T> class Program {
   std::vector<T> params;
   std::vector<Xform<T>> xforms;
   std::vector<std::shared_ptr<const CliMeshSdf<T>>> meshes;
+#if EBGEOM_CLI_HAS_BVH_UNION
+  std::vector<std::shared_ptr<const ExactUnion<T>>> exact_unions;
+  std::vector<std::shared_ptr<const BoundUnion<T>>> bound_unions;
+#endif
+  std::size_t union_triangles = 0; // triangles inside accelerated unions
   Aabb<T> box = Aabb<T>::infinite();
   SdfKind scene_kind = SdfKind::exact;
   std::size_t max_values = 1, max_points = 1; // stack depths proven by the compiler
@@ -94,10 +124,18 @@ template <class T> class Program {
   std::size_t triangle_count() const noexcept {
     std::size_t n = 0;
     for (const auto& m : meshes) n += m->mesh().triangle_count();
-    return n;
+    return n + union_triangles;
   }
 
   T operator()(const Vec3<T>& p) const noexcept {
+    // Small tapes run on stack buffers (no allocation): operands of BVH unions are called per
+    // point.
+    if (max_values <= 16 && max_points <= 15) {
+      T vals[16];
+      Vec3<T> pts[16];
+      run(Span<const Vec3<T>>(&p, 1), vals, pts, 1);
+      return vals[0];
+    }
     T v = 0;
     eval(Span<const Vec3<T>>(&p, 1), Span<T>(&v, 1));
     return v;
@@ -230,6 +268,19 @@ template <class T> class Program {
       case Op::offset: {
         T* top = vals + (vt - 1) * stride;
         for (std::size_t i = 0; i < n; ++i) top[i] -= q[0];
+        break;
+      }
+      case Op::bvh_union: {
+#if EBGEOM_CLI_HAS_BVH_UNION
+        if (ins.n == 1) {
+          const auto& u = *exact_unions[ins.a];
+          for (std::size_t i = 0; i < n; ++i) v[i] = u(p[i]);
+        } else {
+          const auto& u = *bound_unions[ins.a];
+          for (std::size_t i = 0; i < n; ++i) v[i] = u(p[i]);
+        }
+#endif
+        ++vt;
         break;
       }
       case Op::shell: {

@@ -257,6 +257,7 @@ template <class T> class SceneCompiler {
       return leaf(Aabb<T>::infinite());
     }
     if (type == "mesh") return mesh(j, ptr, kind);
+    if (type == "union" && j.contains("accelerate")) return accelerated_union(j, ptr, kind);
     if (type == "union" || type == "intersection" || type == "difference") {
       check_keys(j, ptr, type, {"children", "smooth"});
       const auto ch = j.find("children");
@@ -296,6 +297,66 @@ template <class T> class SceneCompiler {
     bad(ptr + "/type", "unknown node type \"" + type +
                            "\" (expected sphere, box, capsule, cylinder, torus, plane, mesh, "
                            "union, intersection, difference or transform)");
+  }
+
+  /// A sharp union whose children are compiled separately and searched through a BVH of their
+  /// boxes (`"accelerate": true`).
+  Aabb<T> accelerated_union(const Json& j, const std::string& ptr, SdfKind& kind) {
+    check_keys(j, ptr, "union", {"children", "smooth", "accelerate"});
+    if (!j["accelerate"].is_boolean()) bad(ptr + "/accelerate", "expected true or false");
+    const auto ch = j.find("children");
+    if (ch == j.end()) bad(ptr, "missing \"children\" (an array of nodes)");
+    if (!ch->is_array() || ch->empty())
+      bad(ptr + "/children", "expected a non-empty array of nodes, got " + describe(*ch));
+    if (!j["accelerate"].get<bool>()) {
+      Json copy = j;
+      copy.erase("accelerate");
+      return body("union", copy, ptr, kind);
+    }
+    if (number_or(j, ptr, "smooth", Need::non_negative, T(0)) > 0)
+      bad(ptr + "/accelerate", "an accelerated union must be sharp (no \"smooth\")");
+#if EBGEOM_CLI_HAS_BVH_UNION
+    std::vector<Piece<T, SdfKind::exact>> exact;
+    std::vector<Piece<T, SdfKind::implicit>> other;
+    bool all_exact = true;
+    SdfKind children_kind = SdfKind::exact;
+    Aabb<T> b;
+    for (std::size_t i = 0; i < ch->size(); ++i) {
+      auto sub = std::make_shared<Program<T>>();
+      SceneCompiler<T> c(file_, *sub, info_);
+      c.depth_ = depth_;
+      const std::string cp = ptr + "/children/" + std::to_string(i);
+      SdfKind ck = SdfKind::exact;
+      sub->box = c.node((*ch)[i], cp, ck);
+      sub->scene_kind = ck;
+      for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(sub->box.lo[a]) || !std::isfinite(sub->box.hi[a]))
+          bad(cp, "children of an accelerated union must be bounded (a plane is not)");
+      all_exact = all_exact && ck == SdfKind::exact;
+      children_kind = weakest(children_kind, ck);
+      b.extend(sub->box);
+      prog_.union_triangles += sub->triangle_count();
+      exact.push_back({sub});
+      other.push_back({sub});
+    }
+    if (all_exact) {
+      auto u = ExactUnion<T>::make(std::move(exact));
+      if (!u) bad(ptr, u.error().what());
+      prog_.code.push_back({Op::bvh_union, std::uint32_t(prog_.exact_unions.size()), 1});
+      prog_.exact_unions.push_back(std::make_shared<const ExactUnion<T>>(std::move(*u)));
+    } else {
+      auto u = BoundUnion<T>::make(std::move(other));
+      if (!u) bad(ptr, u.error().what());
+      prog_.code.push_back({Op::bvh_union, std::uint32_t(prog_.bound_unions.size()), 0});
+      prog_.bound_unions.push_back(std::make_shared<const BoundUnion<T>>(std::move(*u)));
+    }
+    kind = weakest(kind, children_kind);
+    if (ch->size() > 1) kind = weakest(kind, SdfKind::bound);
+    push_value();
+    return b;
+#else
+    bad(ptr + "/accelerate", "BVH-accelerated unions are not available in this build");
+#endif
   }
 
   Aabb<T> leaf(const Aabb<T>& b) {
