@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <png.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -29,15 +30,32 @@ inline std::string slurp(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+/// Directories made by `test_dir`, removed when the test program exits (set
+/// EBGEOM_KEEP_TEST_FILES to keep them for inspection).
+struct TestDirs {
+  std::vector<std::string> dirs;
+  ~TestDirs() {
+    if (std::getenv("EBGEOM_KEEP_TEST_FILES")) return;
+    std::error_code ec;
+    for (const auto& d : dirs) std::filesystem::remove_all(d, ec);
+  }
+};
+inline TestDirs& test_dirs() {
+  static TestDirs t;
+  return t;
+}
+
 /// A fresh, empty directory for one test.
 inline std::string test_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = std::string(info->test_suite_name()) + "_" + info->name();
   for (char& c : name)
     if (c == '/') c = '_';
-  const std::string dir = ::testing::TempDir() + "ebgeom_cli_" + name;
+  const std::string dir =
+      ::testing::TempDir() + "ebgeom_cli_" + std::to_string(::getpid()) + "_" + name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  test_dirs().dirs.push_back(dir);
   return dir;
 }
 
@@ -45,7 +63,9 @@ inline std::string test_dir() {
 /// and stderr.
 inline RunResult run(const std::string& args) {
   static int counter = 0;
-  const std::string base = ::testing::TempDir() + "ebgeom_cli_run" + std::to_string(++counter);
+  // The process id keeps parallel test processes (ctest -j) apart.
+  const std::string base = ::testing::TempDir() + "ebgeom_cli_run" + std::to_string(::getpid()) +
+                           "_" + std::to_string(++counter);
   const std::string cmd = std::string("'") + EBGEOM_CLI_BINARY + "' " + args + " </dev/null >'" +
                           base + ".out' 2>'" + base + ".err'";
   const int st = std::system(cmd.c_str());

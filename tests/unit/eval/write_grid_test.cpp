@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstring>
@@ -23,7 +24,8 @@ std::string slurp(const std::string& path) {
 }
 
 std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + "ebgeom_wg_" + name;
+  // The process id keeps concurrent runs (ctest -j, several build trees) apart.
+  return ::testing::TempDir() + "ebgeom_wg_" + std::to_string(::getpid()) + "_" + name;
 }
 
 template <class T> struct Fixture {
@@ -145,10 +147,11 @@ TYPED_TEST(WriteGridTest, RawWithJsonSidecar) {
   const auto v = decode<double>(raw.data(), f.values.size());
   for (std::size_t n = 0; n < v.size(); ++n) ASSERT_EQ(v[n], double(f.values[n]));
   EXPECT_EQ(raw_sidecar_path(path), temp_path("grid.json"));
+  const std::string raw_name = path.substr(path.find_last_of('/') + 1);
   const std::string js = slurp(temp_path("grid.json"));
   EXPECT_NE(js.find("\"dims\": [5, 7, 3]"), std::string::npos) << js;
   EXPECT_NE(js.find("\"dtype\": \"float64\""), std::string::npos);
-  EXPECT_NE(js.find("\"file\": \"ebgeom_wg_grid.raw\""), std::string::npos) << js;
+  EXPECT_NE(js.find("\"file\": \"" + raw_name + "\""), std::string::npos) << js;
   EXPECT_NE(js.find("\"centering\": \"cell\""), std::string::npos);
   std::remove(path.c_str());
   std::remove(temp_path("grid.json").c_str());
