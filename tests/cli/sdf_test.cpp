@@ -435,3 +435,33 @@ TEST(SceneNodes, AcceleratedUnionEqualsThePlainUnion) {
       << r.err;
 #endif
 }
+
+TEST(SdfCommand, BandEqualsTheClampedDenseGridOnEveryExampleScene) {
+  const std::string dir = test_dir();
+  std::vector<std::string> scenes;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(EBGEOM_SOURCE_DIR) + "/examples/scenes"))
+    if (e.path().extension() == ".json") scenes.push_back(e.path().string());
+  // A thick shell of a difference (a bound, not exact): culling must stay conservative.
+  write_text(dir + "/shell.json", R"({"type": "difference", "shell": 0.3, "children": [
+      {"type": "box", "half_size": [1, 1, 1]}, {"type": "sphere", "center": [1, 1, 1], "radius": 1}]})");
+  scenes.push_back(dir + "/shell.json");
+  for (const std::string& s : scenes) {
+    const std::string opts = " --res 20 --precision double";
+    RunResult r = run("sdf '" + s + "' -o '" + dir + "/d.npy' --json" + opts);
+    ASSERT_EQ(r.code, 0) << s << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    r = run("sdf '" + s + "' -o '" + dir + "/b.npy' -q --band 1.5" + opts);
+    ASSERT_EQ(r.code, 0) << s << r.err;
+    const Npy d = read_npy(dir + "/d.npy"), b = read_npy(dir + "/b.npy");
+    ASSERT_EQ(d.data.size(), b.data.size());
+    double hmax = 0;
+    for (const auto& h : j["spacing"]) hmax = std::max(hmax, h.get<double>());
+    const double band = 1.5 * hmax;
+    for (std::size_t i = 0; i < d.data.size(); ++i) {
+      const double expect =
+          std::abs(d.data[i]) <= band ? d.data[i] : std::copysign(band, d.data[i]);
+      ASSERT_EQ(b.data[i], expect) << s << " sample " << i;
+    }
+  }
+}

@@ -94,6 +94,8 @@ template <class T> class SceneCompiler {
     if (j.contains("shell")) {
       const T s = number(j, ptr, "shell", Need::positive);
       prog_.code.push_back({Op::shell, param(s), 0});
+      // |S| - t is exact for an exact S; for a bound it may overestimate inside the shell.
+      if (kind != SdfKind::exact) kind = SdfKind::implicit;
       b = b.grown(s);
     }
     --depth_;
