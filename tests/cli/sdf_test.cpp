@@ -465,3 +465,35 @@ TEST(SdfCommand, BandEqualsTheClampedDenseGridOnEveryExampleScene) {
     }
   }
 }
+
+TEST(SceneNodes, ConeAgainstItsRevolvedCrossSection) {
+  // Independent reference: a cone along z is the revolution of the trapezoid with the bottom cap
+  // (0,0)-(ra,0), the side (ra,0)-(rb,h) and the top cap (rb,h)-(0,h) in the (r, z) half-plane.
+  const double ra = 0.8, rb = 0.3, z0 = -0.7, z1 = 0.9;
+  auto seg = [](double px, double py, double ax, double ay, double bx, double by) {
+    const double dx = bx - ax, dy = by - ay;
+    const double t = std::clamp(((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+    return std::hypot(px - ax - t * dx, py - ay - t * dy);
+  };
+  check_scene(R"({"type": "cone", "a": [0, 0, -0.7], "b": [0, 0, 0.9], "radius_a": 0.8,
+                  "radius_b": 0.3})",
+              [&](const V& p) {
+                const double r = std::hypot(p.x, p.y), z = p.z;
+                const double d = std::min({seg(r, z, 0, z0, ra, z0), seg(r, z, ra, z0, rb, z1),
+                                           seg(r, z, rb, z1, 0, z1)});
+                const bool inside = z > z0 && z < z1 && r < ra + (rb - ra) * (z - z0) / (z1 - z0);
+                return inside ? -d : d;
+              },
+              1e-12);
+  // A rotated cone (axis along x) is the same field with the coordinates permuted.
+  check_scene(R"({"type": "cone", "a": [-0.7, 0, 0], "b": [0.9, 0, 0], "radius_a": 0.8,
+                  "radius_b": 0.3})",
+              [&](const V& p) {
+                const double r = std::hypot(p.y, p.z), z = p.x;
+                const double d = std::min({seg(r, z, 0, z0, ra, z0), seg(r, z, ra, z0, rb, z1),
+                                           seg(r, z, rb, z1, 0, z1)});
+                const bool inside = z > z0 && z < z1 && r < ra + (rb - ra) * (z - z0) / (z1 - z0);
+                return inside ? -d : d;
+              },
+              1e-12);
+}

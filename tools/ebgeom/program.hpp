@@ -34,6 +34,7 @@ enum class Op : std::uint8_t {
   capsule,    // p: ax ay az bx by bz r
   cylinder,   // p: ax ay az bx by bz r           (capped, exact)
   torus,      // p: cx cy cz R r                  (axis z)
+  cone,       // p: ax ay az bx by bz ra rb       (capped, exact)
   plane,      // p: nx ny nz d                    (inside: n.p < d)
   mesh,       // a: mesh index; n = 1: unsigned distance
   push_xform, // a: transform index; pushes transformed points
@@ -205,6 +206,25 @@ template <class T> class Program {
           const T d = std::max(x, y) < T(0) ? -std::min(x2, y2)
                                             : ((x > T(0) ? x2 : T(0)) + (y > T(0) ? y2 : T(0)));
           v[i] = std::copysign(std::sqrt(std::abs(d)), d) / baba;
+        }
+        ++vt;
+        break;
+      }
+      case Op::cone: { // exact capped cone between a (radius ra) and b (radius rb) (I. Quilez)
+        const Vec3<T> a{q[0], q[1], q[2]}, ba = Vec3<T>{q[3], q[4], q[5]} - a;
+        const T ra = q[6], rb = q[7], rba = rb - ra, baba = dot(ba, ba);
+        const T kk = rba * rba + baba;
+        for (std::size_t i = 0; i < n; ++i) {
+          const Vec3<T> pa = p[i] - a;
+          const T papa = dot(pa, pa), paba = dot(pa, ba) / baba;
+          const T x = std::sqrt(std::max(papa - paba * paba * baba, T(0)));
+          const T cax = std::max(T(0), x - (paba < T(0.5) ? ra : rb));
+          const T cay = std::abs(paba - T(0.5)) - T(0.5);
+          const T f = clamp((rba * (x - ra) + paba * baba) / kk, T(0), T(1));
+          const T cbx = x - ra - f * rba, cby = paba - f;
+          const T sgn = (cbx < T(0) && cay < T(0)) ? T(-1) : T(1);
+          v[i] =
+              sgn * std::sqrt(std::min(cax * cax + cay * cay * baba, cbx * cbx + cby * cby * baba));
         }
         ++vt;
         break;

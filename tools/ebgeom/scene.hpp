@@ -64,7 +64,7 @@ template <class T> class SceneCompiler {
     ++info_.nodes;
     const auto t = j.find("type");
     if (t == j.end())
-      bad(ptr, "missing \"type\" (sphere, box, capsule, cylinder, torus, plane, "
+      bad(ptr, "missing \"type\" (sphere, box, capsule, cylinder, cone, torus, plane, "
                "mesh, union, intersection, difference, transform)");
     if (!t->is_string()) bad(ptr + "/type", "expected a string, got " + describe(*t));
     const std::string type = *t;
@@ -241,6 +241,16 @@ template <class T> class SceneCompiler {
                             params({a.x, a.y, a.z, b.x, b.y, b.z, r}), 0});
       return leaf(Aabb<T>::of(a, b).grown(r));
     }
+    if (type == "cone") {
+      check_keys(j, ptr, type, {"a", "b", "radius_a", "radius_b"});
+      const Vec3<T> a = vec3(j, ptr, "a", Need::finite), b = vec3(j, ptr, "b", Need::finite);
+      const T ra = number(j, ptr, "radius_a", Need::non_negative);
+      const T rb = number(j, ptr, "radius_b", Need::non_negative);
+      if (!(norm(b - a) > T(0))) bad(ptr + "/b", "a cone needs distinct end points a and b");
+      if (!(ra > 0 || rb > 0)) bad(ptr, "a cone needs radius_a > 0 or radius_b > 0");
+      prog_.code.push_back({Op::cone, params({a.x, a.y, a.z, b.x, b.y, b.z, ra, rb}), 0});
+      return leaf(merge(Aabb<T>::of(a).grown(ra), Aabb<T>::of(b).grown(rb)));
+    }
     if (type == "torus") {
       check_keys(j, ptr, type, {"center", "major_radius", "minor_radius"});
       const Vec3<T> c = vec3_or(j, ptr, "center", Vec3<T>::zero());
@@ -297,7 +307,7 @@ template <class T> class SceneCompiler {
       return node(*c, ptr + "/child", kind);
     }
     bad(ptr + "/type", "unknown node type \"" + type +
-                           "\" (expected sphere, box, capsule, cylinder, torus, plane, mesh, "
+                           "\" (expected sphere, box, capsule, cylinder, cone, torus, plane, mesh, "
                            "union, intersection, difference or transform)");
   }
 
