@@ -497,3 +497,34 @@ TEST(SceneNodes, ConeAgainstItsRevolvedCrossSection) {
               },
               1e-12);
 }
+
+TEST(SdfCommand, DxAndNodeCentredGrids) {
+  const std::string dir = test_dir();
+  write_text(dir + "/s.json", R"({"type": "sphere", "radius": 1})");
+  // --dx 0.25 on the default box [-1.2, 1.2]^3: ceil(2.4 / 0.25) = 10 cubic cells, box grows.
+  RunResult r = run("sdf '" + dir + "/s.json' -o '" + dir + "/a.npy' --dx 0.25 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["dims"], nlohmann::json::array({10, 10, 10}));
+  EXPECT_NEAR(j["box"]["hi"][0].get<double>(), 1.3, 1e-6);
+  EXPECT_NEAR(j["spacing"][2].get<double>(), 0.25, 1e-7);
+  EXPECT_EQ(j["centering"], "cell");
+  // --nodes: samples on both faces, spacing extent / (n - 1), origin at the box corner.
+  r = run("sdf '" + dir + "/s.json' -o '" + dir +
+          "/n.vti' --nodes --res 5 --box -2 -2 -2 2 2 2 "
+          "--precision double --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["centering"], "node");
+  EXPECT_NEAR(j["spacing"][0].get<double>(), 1.0, 1e-12);
+  const Vti v = read_vti(dir + "/n.vti");
+  EXPECT_EQ(v.origin[0], -2.0);
+  EXPECT_EQ(v.extent[1], 4);
+  for (int k = 0; k < 5; ++k)
+    for (int jj = 0; jj < 5; ++jj)
+      for (int i = 0; i < 5; ++i)
+        ASSERT_NEAR(v.data[i + 5 * (jj + 5 * k)],
+                    std::sqrt(double((i - 2) * (i - 2) + (jj - 2) * (jj - 2) + (k - 2) * (k - 2))) -
+                        1,
+                    1e-12);
+}
