@@ -528,3 +528,24 @@ TEST(SdfCommand, DxAndNodeCentredGrids) {
                         1,
                     1e-12);
 }
+
+TEST(SdfErrors, DirectoriesAreNotInputFiles) {
+  const std::string dir = test_dir();
+  std::filesystem::create_directories(dir + "/d.json");
+  std::filesystem::create_directories(dir + "/m.obj");
+  for (const char* in : {"/d.json", "/m.obj"}) {
+    const RunResult r = run("sdf '" + dir + in + "' -o '" + dir + "/x.npy'");
+    EXPECT_EQ(r.code, 3) << r.err;
+    EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+  }
+  write_text(dir + "/s.json", R"({"type": "mesh", "path": "m.obj"})");
+  const RunResult r = run("sdf '" + dir + "/s.json' -o '" + dir + "/x.npy'");
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("/path: "), std::string::npos) << r.err;
+  // An output path that is a directory: an output error, nothing left behind.
+  std::filesystem::create_directories(dir + "/out.npy");
+  write_text(dir + "/ok.json", R"({"type": "sphere", "radius": 1})");
+  const RunResult w = run("sdf '" + dir + "/ok.json' -o '" + dir + "/out.npy' --res 4 -q");
+  EXPECT_EQ(w.code, 4) << w.err;
+  for (const auto& name : list_dir(dir)) EXPECT_EQ(name.find("tmp"), std::string::npos) << name;
+}

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -40,6 +41,13 @@ void require_memory(std::uint64_t bytes, const std::string& what) {
     fail(exit_resource, what + " needs " + human_bytes(bytes) + " of memory but only " +
                             human_bytes(avail) +
                             " is available; lower the resolution (--res/--dx) or shrink --box");
+}
+
+void require_input_file(const std::string& path) {
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(st)) fail(exit_input, path + ": no such file");
+  if (std::filesystem::is_directory(st)) fail(exit_input, path + ": is a directory, not a file");
 }
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }

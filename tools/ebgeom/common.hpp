@@ -35,6 +35,10 @@ std::uint64_t available_memory_bytes();
 /// Throws `exit_resource` when `bytes` exceed the available memory, naming the size needed.
 void require_memory(std::uint64_t bytes, const std::string& what);
 
+/// Throws CliError (input) unless `path` names an existing regular (or special) file that is not a
+/// directory: `FILE: no such file`, `FILE: is a directory`.
+void require_input_file(const std::string& path);
+
 /// "1.5 GiB" style size.
 std::string human_bytes(std::uint64_t bytes);
 

@@ -35,7 +35,7 @@ int run_convert(const ConvertOptions& o) {
   if (w.format == io::MeshFormat::unknown)
     fail(exit_usage, o.output + ": unknown output format; expected .stl, .ply, .obj or .vtk");
   w.encoding = o.ascii ? io::Encoding::ascii : io::Encoding::binary;
-  if (!std::filesystem::exists(o.input)) fail(exit_input, o.input + ": no such file");
+  require_input_file(o.input);
   std::error_code ec;
   if (std::filesystem::exists(o.output) && std::filesystem::equivalent(o.input, o.output, ec))
     fail(exit_usage, o.output + ": is the input itself");

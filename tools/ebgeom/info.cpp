@@ -21,7 +21,7 @@ struct InfoOptions {
 };
 
 int run_info(const InfoOptions& o) {
-  if (!std::filesystem::exists(o.input)) fail(exit_input, o.input + ": no such file");
+  require_input_file(o.input);
   const PolygonSoup<double> soup = load_mesh<double>(o.input);
   const ValidationReport<double> r = validate(soup);
   const bool watertight = r.boundary_edges.empty() && r.non_manifold_edges.empty();

@@ -43,7 +43,12 @@ std::string dict_value(const std::string& h, const std::string& key) {
 std::vector<Vec3<double>> read_npy_points(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(exit_input, path + ": cannot open (" + std::string(std::strerror(errno)) + ")");
-  const std::string b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string b;
+  try {
+    b.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::exception& e) {
+    fail(exit_input, path + ": cannot read (" + e.what() + ")");
+  }
   if (b.size() < 10 || b.compare(0, 6, "\x93NUMPY") != 0)
     bad(path, 0, "not a .npy file (bad magic)");
   const int major = static_cast<unsigned char>(b[6]);

@@ -36,8 +36,8 @@ int run_query(const QueryOptions& o) {
   for (const std::string* out : {&o.output, &o.closest, &o.normals})
     if (!out->empty() && std::filesystem::path(*out).extension() != ".npy")
       fail(exit_usage, *out + ": query outputs are .npy files");
-  if (!std::filesystem::exists(o.input)) fail(exit_input, o.input + ": no such file");
-  if (!std::filesystem::exists(o.points)) fail(exit_input, o.points + ": no such file");
+  require_input_file(o.input);
+  require_input_file(o.points);
 
   const double t0 = now_s();
   const bool scene = is_scene_path(o.input);

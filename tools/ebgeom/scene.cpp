@@ -7,7 +7,13 @@ namespace ebgeom::cli {
 Json read_json_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(exit_input, path + ": cannot open (" + std::string(std::strerror(errno)) + ")");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text;
+  try {
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::exception& e) {
+    fail(exit_input, path + ": cannot read (" + e.what() + ")");
+  }
+  if (in.bad()) fail(exit_input, path + ": cannot read");
   try {
     return Json::parse(text, nullptr, true, /*ignore_comments=*/true);
   } catch (const Json::parse_error& e) {

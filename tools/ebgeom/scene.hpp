@@ -397,6 +397,8 @@ template <class T> class SceneCompiler {
       if (p.is_relative() && !dir_.empty()) p = std::filesystem::path(dir_) / p;
       label = p.string();
       if (!std::filesystem::exists(p)) bad(ptr + "/path", "mesh file " + label + " does not exist");
+      if (std::filesystem::is_directory(p))
+        bad(ptr + "/path", label + " is a directory, not a mesh file");
       soup = load_mesh<T>(label);
     } else {
       if (!j["generate"].is_string()) bad(ptr + "/generate", "expected a string");

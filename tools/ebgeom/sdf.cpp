@@ -75,7 +75,7 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   if (!fmt) fail(exit_usage, fmt.error().what());
   SliceSpec slice;
   if (!o.png.empty()) slice = parse_slice(o.slice);
-  if (!std::filesystem::exists(o.input)) fail(exit_input, o.input + ": no such file");
+  require_input_file(o.input);
   {
     std::error_code ec;
     auto same = [&](const std::string& out) {
