@@ -84,12 +84,14 @@ template <class T> struct GridSpec {
   std::size_t index(std::size_t i, std::size_t j, std::size_t k) const noexcept {
     return i + dims[0] * (j + dims[1] * k);
   }
-  /// Checks: finite box with lo < hi on every axis, 1 <= dims[a] <= 2^21, and a total size that
-  /// fits in memory addressing. Errors: `invalid_argument` naming the field.
+  /// Checks: finite box (and extent) with lo < hi on every axis, 1 <= dims[a] <= 2^21, and a total
+  /// size that fits in memory addressing. Errors: `invalid_argument` naming the field.
   Result<Ok> validate() const {
     for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(box.lo[a]) || !std::isfinite(box.hi[a]))
-        return make_error(ErrorCode::invalid_argument, "grid box is not finite");
+      if (!std::isfinite(box.lo[a]) || !std::isfinite(box.hi[a]) ||
+          !std::isfinite(box.hi[a] - box.lo[a]))
+        return make_error(ErrorCode::invalid_argument, "grid box is not finite (axis ", "xyz"[a],
+                          ")");
       if (!(box.lo[a] < box.hi[a]))
         return make_error(ErrorCode::invalid_argument, "grid box has lo >= hi on axis ", "xyz"[a],
                           " (", box.lo[a], " >= ", box.hi[a], ")");

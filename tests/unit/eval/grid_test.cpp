@@ -59,6 +59,10 @@ TYPED_TEST(GridTest, ValidateRejectsBadSpecs) {
   g = GridSpec<T>{};
   g.box.lo.x = std::numeric_limits<T>::quiet_NaN();
   EXPECT_FALSE(g.validate());
+  g = GridSpec<T>{};
+  g.box.lo.z = -std::numeric_limits<T>::max();
+  g.box.hi.z = std::numeric_limits<T>::max(); // the extent overflows
+  EXPECT_FALSE(g.validate());
 }
 
 TYPED_TEST(GridTest, SampleGridEqualsPointwiseForAnyThreadCount) {
