@@ -12,3 +12,5 @@
 #include "ebgeom/mesh/pseudonormals.hpp"
 #include "ebgeom/mesh/soup_check.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
+#include "ebgeom/mesh/validate.hpp"
+#include "ebgeom/mesh/weld.hpp"

@@ -43,8 +43,8 @@ DcelClosestPoint<T> signed_distance_to_vertex(const HalfEdgeMesh<T>& m, Index v,
   const Vec3<T> d = x - xv;
   const T d2 = norm2(d);
   const T s = std::sqrt(d2);
-  return {dot(m.vertex_normal(v), d) < T(0) ? -s : s, d2, xv, DcelFeature::vertex, v,
-          invalid_index};
+  return {
+      dot(m.vertex_normal(v), d) < T(0) ? -s : s, d2, xv, DcelFeature::vertex, v, invalid_index};
 }
 
 /// Edge case for half-edge h = (x0, x1): project x on e(t) = x0 + (x1 - x0) t; for t in (0, 1)
@@ -63,8 +63,8 @@ DcelClosestPoint<T> signed_distance_to_edge(const HalfEdgeMesh<T>& m, Index h,
   const Vec3<T> q = x0 + e * (t / ee);
   const T d2 = norm2(x - q);
   const T s = std::sqrt(d2);
-  return {dot(m.edge_normal(h), x - x0) < T(0) ? -s : s, d2, q, DcelFeature::edge, h,
-          invalid_index};
+  return {
+      dot(m.edge_normal(h), x - x0) < T(0) ? -s : s, d2, q, DcelFeature::edge, h, invalid_index};
 }
 
 /// Face case: project x to the face plane and test the projection with `method` in the face's
@@ -81,7 +81,9 @@ DcelClosestPoint<T> signed_distance_to_face(const HalfEdgeMesh<T>& m, Index f, c
     const PlaneProjection& pr = face.projection;
     const Index first = face.edge;
     // half-edges of a face are contiguous from face.edge (see HalfEdgeMesh)
-    auto corner = [&](std::size_t i) { return pr(m.position(m.half_edge(first + Index(i)).origin)); };
+    auto corner = [&](std::size_t i) {
+      return pr(m.position(m.half_edge(first + Index(i)).origin));
+    };
     if (point_in_polygon(pr(xp), face.size, corner, method))
       return {h, h * h, xp, DcelFeature::face, f, f};
   }

@@ -109,9 +109,9 @@ TYPED_TEST(DcelSdfTest, OctahedronAndTetrahedronEqualClosedForms) {
 
 TYPED_TEST(DcelSdfTest, DcelAndTriangleMeshAgree) {
   using T = TypeParam;
-  const std::vector<PolygonSoup<T>> soups = {
-      make_icosphere<T>(2, T(1.2)).value(), make_torus<T>(T(1.5), T(0.5), 24, 12).value(),
-      test::l_prism<T>(), make_cube<T>(1).value()};
+  const std::vector<PolygonSoup<T>> soups = {make_icosphere<T>(2, T(1.2)).value(),
+                                             make_torus<T>(T(1.5), T(0.5), 24, 12).value(),
+                                             test::l_prism<T>(), make_cube<T>(1).value()};
   for (const auto& soup : soups) {
     const auto dcel = BruteForceDcelSdf<T>::build(soup).value();
     const auto tri = BruteForceMeshSdf<T>::build(soup).value();

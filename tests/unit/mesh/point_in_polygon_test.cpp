@@ -58,10 +58,10 @@ TYPED_TEST(PointInPolygonTest, AllThreeAgreeOnRandomStarPolygons) {
       const Vec2<T> p{T(2.4 * u(rng) - 1.2), T(2.4 * u(rng) - 1.2)};
       double dmin = 1e300;
       for (int i = 0; i < k; ++i)
-        dmin = std::min(dmin, segment_distance({double(p.x), double(p.y)},
-                                               {double(poly[i].x), double(poly[i].y)},
-                                               {double(poly[(i + 1) % k].x),
-                                                double(poly[(i + 1) % k].y)}));
+        dmin = std::min(
+            dmin,
+            segment_distance({double(p.x), double(p.y)}, {double(poly[i].x), double(poly[i].y)},
+                             {double(poly[(i + 1) % k].x), double(poly[(i + 1) % k].y)}));
       if (dmin < 1e-4) continue; // the boundary is unspecified
       const bool a = point_in_polygon(p, k, c, InsideTest::crossing_number);
       const bool b = point_in_polygon(p, k, c, InsideTest::winding_number);
