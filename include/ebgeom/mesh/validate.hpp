@@ -51,29 +51,31 @@ template <class T> struct ValidationReport {
   std::size_t vertex_count = 0, face_count = 0, corner_count = 0;
   std::size_t edge_count = 0; ///< distinct undirected edges of the usable faces
   // Structure.
-  bool offsets_ok = true;             ///< offsets start at 0, never decrease, end at the corners
-  IssueList<Index> bad_index_faces;   ///< faces with a corner >= vertex count
-  IssueList<Index> short_faces;       ///< faces with fewer than 3 corners
+  bool offsets_ok = true;           ///< offsets start at 0, never decrease, end at the corners
+  IssueList<Index> bad_index_faces; ///< faces with a corner >= vertex count
+  IssueList<Index> short_faces;     ///< faces with fewer than 3 corners
   IssueList<Index> non_finite_vertices;
   // Topology.
-  IssueList<EdgeKey> boundary_edges;  ///< edges with exactly one face
-  std::size_t holes = 0;              ///< boundary loops (connected sets of boundary edges)
-  IssueList<EdgeKey> non_manifold_edges; ///< edges with more than two faces
+  IssueList<EdgeKey> boundary_edges;      ///< edges with exactly one face
+  std::size_t holes = 0;                  ///< boundary loops (connected sets of boundary edges)
+  IssueList<EdgeKey> non_manifold_edges;  ///< edges with more than two faces
   IssueList<Index> non_manifold_vertices; ///< vertices whose faces form more than one fan
-  IssueList<EdgeKey> inconsistent_edges; ///< edges whose two faces traverse it the same way
-  IssueList<Index> degenerate_faces;  ///< zero-area faces or faces repeating a vertex
-  IssueList<Index> duplicate_faces;   ///< faces with the same vertex set as an earlier face
-  IssueList<Index> isolated_vertices; ///< vertices no usable face references
+  IssueList<EdgeKey> inconsistent_edges;  ///< edges whose two faces traverse it the same way
+  IssueList<Index> degenerate_faces;      ///< zero-area faces or faces repeating a vertex
+  IssueList<Index> duplicate_faces;       ///< faces with the same vertex set as an earlier face
+  IssueList<Index> isolated_vertices;     ///< vertices no usable face references
   // Geometry (in double, over the usable faces with finite vertices).
-  Aabb<T> bounds;                     ///< of the finite vertices
+  Aabb<T> bounds; ///< of the finite vertices
   double area = 0;
-  double signed_volume = 0;           ///< > 0 for outward orientation (divergence theorem)
+  double signed_volume = 0; ///< > 0 for outward orientation (divergence theorem)
   // Verdict.
   bool sdf_well_defined = false;
-  std::string verdict;                ///< one line: "signed distance well defined: ..." or why not
+  std::string verdict; ///< one line: "signed distance well defined: ..." or why not
 
   bool closed() const noexcept { return boundary_edges.empty(); }
-  bool manifold() const noexcept { return non_manifold_edges.empty() && non_manifold_vertices.empty(); }
+  bool manifold() const noexcept {
+    return non_manifold_edges.empty() && non_manifold_vertices.empty();
+  }
   bool consistently_oriented() const noexcept { return inconsistent_edges.empty(); }
 };
 
@@ -149,8 +151,8 @@ ValidationReport<T> validate(const PolygonSoup<T>& soup, const ValidateOptions& 
 
   // Geometry, degenerate faces, isolated vertices.
   std::vector<bool> referenced(nv, false);
-  const Vec3<double> origin = r.bounds.is_empty() ? Vec3<double>::zero()
-                                                  : Vec3<double>::from(r.bounds.center());
+  const Vec3<double> origin =
+      r.bounds.is_empty() ? Vec3<double>::zero() : Vec3<double>::from(r.bounds.center());
   for (std::size_t f = 0; f < nf; ++f) {
     if (!usable[f]) continue;
     const Index* c = soup.indices.data() + soup.offsets[f];
@@ -171,7 +173,8 @@ ValidationReport<T> validate(const PolygonSoup<T>& soup, const ValidateOptions& 
     const double area = norm(n) / 2;
     r.area += area;
     const Vec3<double> o = corner(0);
-    for (std::size_t i = 1; i + 1 < k; ++i) r.signed_volume += dot(o, cross(corner(i), corner(i + 1))) / 6;
+    for (std::size_t i = 1; i + 1 < k; ++i)
+      r.signed_volume += dot(o, cross(corner(i), corner(i + 1))) / 6;
     if (repeated || !(area > opt.degenerate_area)) r.degenerate_faces.add(Index(f), ml);
   }
   for (std::size_t v = 0; v < nv; ++v)
@@ -217,7 +220,8 @@ ValidationReport<T> validate(const PolygonSoup<T>& soup, const ValidateOptions& 
       if (s0.forward == s1.forward) r.inconsistent_edges.add(key, ml);
       // join the corners at each end vertex: (origin of one side, end of the other) when
       // opposite; (origin, origin) and (end, end) when inconsistent.
-      const Index s0_end = next_corner(s0.corner, s0.face), s1_end = next_corner(s1.corner, s1.face);
+      const Index s0_end = next_corner(s0.corner, s0.face),
+                  s1_end = next_corner(s1.corner, s1.face);
       if (s0.forward != s1.forward) {
         fans.unite(s0.corner, s1_end);
         fans.unite(s0_end, s1.corner);
@@ -290,8 +294,8 @@ ValidationReport<T> validate(const PolygonSoup<T>& soup, const ValidateOptions& 
   std::ostringstream os;
   r.sdf_well_defined = why.empty();
   if (r.sdf_well_defined) {
-    os << "signed distance well defined: closed, manifold, consistently outward oriented ("
-       << nv << " vertices, " << nf << " faces)";
+    os << "signed distance well defined: closed, manifold, consistently outward oriented (" << nv
+       << " vertices, " << nf << " faces)";
   } else {
     os << "signed distance NOT well defined: ";
     for (std::size_t i = 0; i < why.size(); ++i) os << (i ? "; " : "") << why[i];
@@ -311,7 +315,8 @@ template <class T> void flip_faces(PolygonSoup<T>& soup) noexcept {
   if (soup.offsets.empty() || soup.offsets.back() != soup.indices.size()) return;
   for (std::size_t f = 0; f + 1 < soup.offsets.size(); ++f)
     if (soup.offsets[f] <= soup.offsets[f + 1] && soup.offsets[f + 1] <= soup.indices.size())
-      std::reverse(soup.indices.begin() + soup.offsets[f], soup.indices.begin() + soup.offsets[f + 1]);
+      std::reverse(soup.indices.begin() + soup.offsets[f],
+                   soup.indices.begin() + soup.offsets[f + 1]);
 }
 
 /// Flips every face when the signed volume of `soup` is negative (a consistently but inward

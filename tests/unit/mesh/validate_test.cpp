@@ -147,7 +147,8 @@ TYPED_TEST(ValidateTest, DuplicateFaceAndNonManifoldEdge) {
   auto t2 = make_tetrahedron<T>(1).value();
   PolygonSoup<T> bow = tet;
   const Index base = Index(bow.vertices.size());
-  for (const auto& v : t2.vertices) bow.add_vertex(Vec3<T>{T(2) * tet.vertices[0].x - v.x, v.y, v.z});
+  for (const auto& v : t2.vertices)
+    bow.add_vertex(Vec3<T>{T(2) * tet.vertices[0].x - v.x, v.y, v.z});
   for (std::size_t f = 0; f < t2.face_count(); ++f) {
     std::vector<Index> c;
     for (Index i : t2.face(f)) c.push_back(i == 0 ? 0 : base + i);
