@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "ebgeom/core/aabb.hpp"
@@ -53,9 +54,57 @@ template <class T> struct TriangleMesh {
   }
 };
 
+namespace detail {
+/// Triangulates a planar polygon of `k` corners with unit normal `n` into `out` (corner positions,
+/// counter-clockwise about n). Convex polygons (and any polygon whose fan from corner 0 is valid,
+/// i.e. every fan triangle is oriented along n) get the fan (0, i, i+1); others are ear-clipped
+/// in the polygon's plane, O(k^2). If no ear is found (degenerate input), the rest is fanned.
+template <class T, class CornerFn>
+void triangulate_polygon(std::size_t k, const CornerFn& corner, const Vec3<T>& n,
+                         std::vector<std::array<std::size_t, 3>>& out) {
+  out.clear();
+  if (k < 3) return;
+  auto area = [&](std::size_t a, std::size_t b, std::size_t c) {
+    return dot(n, cross(corner(b) - corner(a), corner(c) - corner(a)));
+  };
+  bool fan_ok = true;
+  for (std::size_t i = 1; i + 1 < k && fan_ok; ++i) fan_ok = area(0, i, i + 1) >= T(0);
+  // Fan triangles all oriented along n can still overlap only if the polygon winds around
+  // vertex 0 more than once, which a simple polygon cannot.
+  if (fan_ok) {
+    for (std::size_t i = 1; i + 1 < k; ++i) out.push_back({0, i, i + 1});
+    return;
+  }
+  std::vector<std::size_t> ring(k);
+  for (std::size_t i = 0; i < k; ++i) ring[i] = i;
+  auto inside = [&](std::size_t p, std::size_t a, std::size_t b, std::size_t c) {
+    return area(a, b, p) > T(0) && area(b, c, p) > T(0) && area(c, a, p) > T(0);
+  };
+  while (ring.size() > 3) {
+    const std::size_t m = ring.size();
+    bool clipped = false;
+    for (std::size_t i = 0; i < m && !clipped; ++i) {
+      const std::size_t a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
+      if (!(area(a, b, c) > T(0))) continue; // reflex or flat corner
+      bool ear = true;
+      for (std::size_t j = 0; j < m && ear; ++j) {
+        const std::size_t p = ring[j];
+        if (p != a && p != b && p != c && inside(p, a, b, c)) ear = false;
+      }
+      if (!ear) continue;
+      out.push_back({a, b, c});
+      ring.erase(ring.begin() + std::ptrdiff_t(i));
+      clipped = true;
+    }
+    if (!clipped) break;
+  }
+  for (std::size_t i = 1; i + 1 < ring.size(); ++i) out.push_back({ring[0], ring[i], ring[i + 1]});
+}
+} // namespace detail
+
 /// Builds a `TriangleMesh` from a polygon soup: each polygon (c0, ..., c_{k-1}) is fan-triangulated
-/// into (c0, c_i, c_{i+1}), which is exact for convex planar polygons (non-convex polygons need
-/// the half-edge mesh). Normals:
+/// into (c0, c_i, c_{i+1}) when that fan is valid (convex and star-shaped-from-c0 polygons), and
+/// ear-clipped in its plane otherwise (simple non-convex planar polygons). Normals:
 /// - face normal: the unit Newell normal of the source polygon (the same for all its triangles);
 /// - edge pseudonormal: normalise(sum of the normals of the polygons sharing the edge); a boundary
 ///   edge gets its one polygon's normal; a fan diagonal (inside a polygon) gets the polygon normal,
@@ -85,19 +134,25 @@ template <class T> Result<TriangleMesh<T>> make_triangle_mesh(const PolygonSoup<
     const std::size_t e = edges.find(a, b);
     return e < edges.edges.size() ? edges.normals[e] : Vec3<T>::zero();
   };
+  std::vector<std::array<std::size_t, 3>> tris; // corner positions within the polygon
   for (std::size_t f = 0; f < soup.face_count(); ++f) {
     const std::size_t k = soup.face_size(f);
     const Index* c = soup.indices.data() + soup.offsets[f];
     const Vec3<T>& n = poly_normals[f];
-    for (std::size_t i = 1; i + 1 < k; ++i) {
-      m.triangles.push_back({c[0], c[i], c[i + 1]});
+    detail::triangulate_polygon<T>(
+        k, [&](std::size_t i) -> const Vec3<T>& { return soup.vertices[c[i]]; }, n, tris);
+    for (const auto& t : tris) {
+      m.triangles.push_back({c[t[0]], c[t[1]], c[t[2]]});
       m.source_face.push_back(static_cast<Index>(f));
       m.face_normals.push_back(n);
-      // (c0, ci) is a polygon edge only for i == 1; (c_{i+1}, c0) only for i == k - 2.
-      const Vec3<T> e0 = i == 1 ? edge_normal(c[0], c[1]) : n;
-      const Vec3<T> e1 = edge_normal(c[i], c[i + 1]);
-      const Vec3<T> e2 = i + 2 == k ? edge_normal(c[k - 1], c[0]) : n;
-      m.edge_normals.push_back({e0, e1, e2});
+      // A side is a polygon edge when its corners are consecutive; otherwise it is an internal
+      // diagonal and gets the polygon normal.
+      std::array<Vec3<T>, 3> en;
+      for (int e = 0; e < 3; ++e) {
+        const std::size_t a = t[e], b = t[(e + 1) % 3];
+        en[e] = (b == (a + 1) % k) ? edge_normal(c[a], c[b]) : n;
+      }
+      m.edge_normals.push_back(en);
     }
   }
   return m;

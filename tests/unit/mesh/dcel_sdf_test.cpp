@@ -138,3 +138,28 @@ TYPED_TEST(DcelSdfTest, TorusTracksTheAnalyticTorus) {
     EXPECT_NEAR(double(sdf(p)), ref, err + tolerance<T>(ref)) << p;
   }
 }
+
+TYPED_TEST(DcelSdfTest, NonStarPolygonIsEarClippedInTheTriangleMesh) {
+  using T = TypeParam;
+  // The L prism with its bottom face starting at (0, 2): the fan from there leaves the L, so the
+  // triangle mesh must ear-clip it to agree with the DCEL (which tests the polygon directly).
+  auto soup = test::l_prism<T>();
+  const auto reference = soup;
+  const std::vector<Index> bottom = {5, 4, 3, 2, 1, 0};
+  std::copy(bottom.begin(), bottom.end(), soup.indices.begin());
+  const auto tri = BruteForceMeshSdf<T>::build(soup).value();
+  const auto& m = tri.mesh();
+  double bottom_area = 0;
+  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+    const Vec3<T> c = cross(m.corner(t, 1) - m.corner(t, 0), m.corner(t, 2) - m.corner(t, 0));
+    EXPECT_GE(dot(c, m.face_normals[t]), T(0)); // every triangle keeps the polygon's orientation
+    if (m.source_face[t] == 0) bottom_area += double(norm(c)) / 2;
+  }
+  EXPECT_NEAR(bottom_area, 3.0, 1e-5);
+  const auto dcel = BruteForceDcelSdf<T>::build(soup).value();
+  for (const auto& p : test::random_points(Aabb<T>::of({-1, -1, -1}, {3, 3, 2}), 1500, 53)) {
+    const double ref = test::ref_signed_distance(reference, dbl(p));
+    EXPECT_NEAR(double(tri(p)), ref, tolerance<T>(ref)) << p;
+    EXPECT_NEAR(double(dcel(p)), ref, tolerance<T>(ref)) << p;
+  }
+}
