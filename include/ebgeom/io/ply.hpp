@@ -4,10 +4,12 @@
 /// any count and index type, and `tristrips` (strips with -1 restarts); other elements and
 /// properties are skipped.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "ebgeom/core/result.hpp"
@@ -105,7 +107,9 @@ template <class T, class Src> class PlyBody {
 
   bool vertices(const PlyElement& el, ParseError& err) {
     const int ix = ply_find(el, "x"), iy = ply_find(el, "y"), iz = ply_find(el, "z");
-    for (std::uint64_t r = 0; r < el.count; ++r) {
+    std::uint64_t r = 0;
+    if constexpr (std::is_same_v<Src, BinarySource>) r = fast_vertices(el, ix, iy, iz);
+    for (; r < el.count; ++r) {
       T xyz[3] = {T(0), T(0), T(0)};
       for (std::size_t p = 0; p < el.properties.size(); ++p) {
         const int pi = int(p);
@@ -131,7 +135,10 @@ template <class T, class Src> class PlyBody {
     const int il = ply_index_list(el);
     const PlyProperty& list = el.properties[std::size_t(il)];
     std::vector<Index> corners;
-    for (std::uint64_t r = 0; r < el.count; ++r) {
+    std::uint64_t r = 0;
+    if constexpr (std::is_same_v<Src, BinarySource>)
+      if (!strips) r = fast_faces(el);
+    for (; r < el.count; ++r) {
       for (std::size_t p = 0; p < el.properties.size(); ++p) {
         if (int(p) != il) {
           if (!skip_one(el, p, err)) return false;
@@ -176,6 +183,76 @@ template <class T, class Src> class PlyBody {
   }
 
  private:
+  // Binary fast paths: they consume the records they can read without any error and return how
+  // many; the general loop continues from there (and reports the error, if any, precisely).
+  std::uint64_t fast_vertices(const PlyElement& el, int ix, int iy, int iz) {
+    std::size_t stride = 0, off[3] = {0, 0, 0};
+    ScalarType ty[3] = {};
+    for (std::size_t p = 0; p < el.properties.size(); ++p) {
+      const PlyProperty& pr = el.properties[p];
+      if (pr.is_list()) return 0;
+      const int k = int(p) == ix ? 0 : int(p) == iy ? 1 : int(p) == iz ? 2 : -1;
+      if (k >= 0) {
+        off[k] = stride;
+        ty[k] = pr.type;
+      }
+      stride += scalar_size(pr.type);
+    }
+    ByteReader& in = src_->reader();
+    const Endian e = src_->endian();
+    const std::uint64_t n = std::min<std::uint64_t>(el.count, in.remaining() / stride);
+    const char* base = in.data();
+    std::uint64_t r = 0;
+    for (; r < n; ++r) {
+      const char* rec = base + r * stride;
+      const T x = load_as<T>(rec + off[0], ty[0], e), y = load_as<T>(rec + off[1], ty[1], e),
+              z = load_as<T>(rec + off[2], ty[2], e);
+      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) break;
+      soup_->vertices.push_back(Vec3<T>{x, y, z});
+    }
+    in.skip(r * stride);
+    return r;
+  }
+  std::uint64_t fast_faces(const PlyElement& el) {
+    if (el.properties.size() != 1) return 0;
+    const PlyProperty& list = el.properties[0];
+    const std::ptrdiff_t cs = std::ptrdiff_t(scalar_size(list.count_type));
+    const std::ptrdiff_t is = std::ptrdiff_t(scalar_size(list.type));
+    ByteReader& in = src_->reader();
+    const Endian e = src_->endian();
+    const char* p = in.data();
+    const char* const end = p + in.remaining();
+    std::vector<Index>& idx = soup_->indices;
+    std::uint64_t r = 0;
+    for (; r < el.count; ++r) {
+      if (end - p < cs) break;
+      const std::int64_t c = load_as<std::int64_t>(p, list.count_type, e);
+      if (c < 3 || (end - p - cs) / is < c ||
+          triangles_ + std::uint64_t(c) - 2 > opt_->max_triangles)
+        break;
+      const char* q = p + cs;
+      const std::size_t first = idx.size();
+      bool ok = true;
+      for (std::int64_t k = 0; k < c; ++k) {
+        const std::int64_t v = load_as<std::int64_t>(q + k * is, list.type, e);
+        if (v < 0 || std::uint64_t(v) >= nverts_) {
+          ok = false;
+          break;
+        }
+        idx.push_back(Index(v));
+      }
+      if (!ok) {
+        idx.resize(first);
+        break;
+      }
+      soup_->offsets.push_back(Index(idx.size()));
+      triangles_ += std::uint64_t(c) - 2;
+      p = q + c * is;
+    }
+    in.skip(std::size_t(p - in.data()));
+    return r;
+  }
+
   /// Skips property `p` of one record (a scalar or a whole list).
   bool skip_one(const PlyElement& el, std::size_t p, ParseError& err) {
     const PlyProperty& pr = el.properties[p];

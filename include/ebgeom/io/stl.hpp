@@ -4,6 +4,7 @@
 /// duplicates are welded (`ReadOptions::stl_vertices`). Facet normals are ignored (the winding
 /// defines the orientation).
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -80,20 +81,45 @@ Result<PolygonSoup<T>, ParseError> parse_stl_binary(ByteView bytes, const ReadOp
   soup.reserve(weld ? n / 2 + 16 : std::size_t(n) * 3, n, std::size_t(n) * 3);
   detail::StlVertexSink<T> sink(soup, opt.stl_vertices, n / 2 + 16);
   const char* base = in.data();
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const char* rec = base + std::size_t(i) * 50;
-    Index c[3];
-    for (int k = 0; k < 3; ++k) {
-      const char* q = rec + 12 + 12 * k;
-      const float x = detail::load<float>(q, Endian::little);
-      const float y = detail::load<float>(q + 4, Endian::little);
-      const float z = detail::load<float>(q + 8, Endian::little);
-      if (EBGEOM_UNLIKELY(!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)))
-        return in.fail_at(std::size_t(q - bytes.data()), ErrorCode::non_finite, "triangle ", i,
-                          " vertex ", k, " has a NaN or infinite coordinate");
-      c[k] = sink.add(Vec3<T>{T(x), T(y), T(z)});
+  // Batches of triangles: load and check, then prefetch the weld table's slots and the vertices
+  // they hold, then weld in order (the table lookups are the cost of this loop).
+  constexpr std::uint32_t batch = 16;
+  Vec3<T> p[3 * batch];
+  std::size_t h[3 * batch];
+  for (std::uint32_t first = 0; first < n; first += batch) {
+    const std::uint32_t count = std::min(batch, n - first);
+    for (std::uint32_t t = 0; t < count; ++t) {
+      const char* rec = base + std::size_t(first + t) * 50;
+      for (int k = 0; k < 3; ++k) {
+        const char* q = rec + 12 + 12 * k;
+        const float x = detail::load<float>(q, Endian::little);
+        const float y = detail::load<float>(q + 4, Endian::little);
+        const float z = detail::load<float>(q + 8, Endian::little);
+        if (EBGEOM_UNLIKELY(!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)))
+          return in.fail_at(std::size_t(q - bytes.data()), ErrorCode::non_finite, "triangle ",
+                            first + t, " vertex ", k, " has a NaN or infinite coordinate");
+        p[3 * t + k] = Vec3<T>{T(x), T(y), T(z)};
+      }
     }
-    soup.add_triangle(c[0], c[1], c[2]);
+    if (!weld) {
+      for (std::uint32_t t = 0; t < count; ++t) {
+        const Index a = soup.add_vertex(p[3 * t]), b = soup.add_vertex(p[3 * t + 1]);
+        soup.add_triangle(a, b, soup.add_vertex(p[3 * t + 2]));
+      }
+      continue;
+    }
+    auto& w = sink.welder;
+    for (std::uint32_t k = 0; k < 3 * count; ++k) {
+      p[k] = w.canonical(p[k]);
+      h[k] = w.hash(p[k]);
+      w.prefetch(h[k]);
+    }
+    for (std::uint32_t k = 0; k < 3 * count; ++k) w.prefetch_vertex(h[k]);
+    for (std::uint32_t t = 0; t < count; ++t) {
+      const Index a = w.insert_canonical(p[3 * t], h[3 * t]);
+      const Index b = w.insert_canonical(p[3 * t + 1], h[3 * t + 1]);
+      soup.add_triangle(a, b, w.insert_canonical(p[3 * t + 2], h[3 * t + 2]));
+    }
   }
   return soup;
 }

@@ -28,11 +28,48 @@ template <class T> class ExactWelder {
     for (std::size_t i = 0; i < vertices.size(); ++i) place(Index(i));
   }
 
-  Index insert(Vec3<T> p) {
+  /// `p` with -0 turned into +0, the form in which vertices are stored and compared.
+  static Vec3<T> canonical(Vec3<T> p) noexcept {
     p.x += T(0); // -0 + 0 == +0: equal values weld whatever their sign bit
     p.y += T(0);
     p.z += T(0);
-    std::size_t h = hash(p) & mask_;
+    return p;
+  }
+  /// Hash of a canonical point (see `insert_canonical`).
+  static std::size_t hash(const Vec3<T>& p) noexcept {
+    std::uint64_t h = std::uint64_t(bits(p.x)) * 0x9E3779B97F4A7C15ull;
+    h ^= std::uint64_t(bits(p.y)) * 0xC2B2AE3D27D4EB4Full;
+    h ^= std::uint64_t(bits(p.z)) * 0x165667B19E3779F9ull;
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 32;
+    return std::size_t(h);
+  }
+  /// Hints the cache about the slot of hash `h` (and the vertex it holds): batch callers call
+  /// this for a few points ahead of `insert_canonical`, hiding the table's cache misses.
+  void prefetch(std::size_t h) const noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(slots_.data() + (h & mask_));
+#else
+    (void)h;
+#endif
+  }
+  void prefetch_vertex(std::size_t h) const noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+    const Index s = slots_[h & mask_];
+    if (s != empty) __builtin_prefetch(vertices_->data() + s);
+#else
+    (void)h;
+#endif
+  }
+
+  Index insert(const Vec3<T>& p) {
+    const Vec3<T> c = canonical(p);
+    return insert_canonical(c, hash(c));
+  }
+  /// `insert` for a point already in canonical form whose hash is `h`.
+  Index insert_canonical(const Vec3<T>& p, std::size_t hp) {
+    std::size_t h = hp & mask_;
     const Vec3<T>* v = vertices_->data();
     for (;;) {
       const Index s = slots_[h];
@@ -58,15 +95,6 @@ template <class T> class ExactWelder {
   }
   static bool same_bits(const Vec3<T>& a, const Vec3<T>& b) noexcept {
     return bits(a.x) == bits(b.x) && bits(a.y) == bits(b.y) && bits(a.z) == bits(b.z);
-  }
-  static std::size_t hash(const Vec3<T>& p) noexcept {
-    std::uint64_t h = std::uint64_t(bits(p.x)) * 0x9E3779B97F4A7C15ull;
-    h ^= std::uint64_t(bits(p.y)) * 0xC2B2AE3D27D4EB4Full;
-    h ^= std::uint64_t(bits(p.z)) * 0x165667B19E3779F9ull;
-    h ^= h >> 29;
-    h *= 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 32;
-    return std::size_t(h);
   }
   void place(Index i) {
     std::size_t h = hash((*vertices_)[i]) & mask_;

@@ -91,6 +91,8 @@ class BinarySource {
     return in_->skip(scalar_size(t));
   }
   std::uint64_t remaining() const noexcept { return in_->remaining(); }
+  ByteReader& reader() noexcept { return *in_; }
+  Endian endian() const noexcept { return e_; }
   template <class... A> ParseError error(const A&... what) const {
     if (bad_) return in_->fail_at(mark_, ErrorCode::bad_number, what..., " is not a valid integer");
     return in_->fail_at(mark_, ErrorCode::truncated, "input ends where ", what..., " was expected");
