@@ -233,7 +233,6 @@ TEST(Convert, Errors) {
   EXPECT_FALSE(exists(dir + "/b.stl"));
 }
 
-#if __has_include("ebgeom/mesh/validate.hpp")
 TEST(Info, ReportsCountsTopologyAndGeometry) {
   const std::string dir = test_dir();
   const std::string obj = write_mesh_file(dir, "l.obj", l_prism_obj);
@@ -269,4 +268,3 @@ TEST(Info, ReportsCountsTopologyAndGeometry) {
   r = run("info '" + dir + "/none.obj'");
   EXPECT_EQ(r.code, 3);
 }
-#endif

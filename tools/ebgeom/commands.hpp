@@ -18,7 +18,6 @@ Subcommand add_demo(CLI::App& app);
 Subcommand add_sdf(CLI::App& app);
 Subcommand add_query(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
-/// Empty (no app) when the mesh validation module is absent from this build.
 Subcommand add_info(CLI::App& app);
 
 } // namespace ebgeom::cli

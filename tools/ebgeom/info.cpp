@@ -1,7 +1,6 @@
 // `ebgeom info MESH [--json]`: counts, bounding box and the validation report of a mesh.
 #include "commands.hpp"
 
-#if __has_include("ebgeom/mesh/validate.hpp")
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -91,9 +90,3 @@ Subcommand add_info(CLI::App& app) {
 }
 
 } // namespace ebgeom::cli
-
-#else
-namespace ebgeom::cli {
-Subcommand add_info(CLI::App&) { return {}; }
-} // namespace ebgeom::cli
-#endif

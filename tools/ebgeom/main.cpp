@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   subs.push_back(add_sdf(app));
   subs.push_back(add_query(app));
   subs.push_back(add_convert(app));
-  if (Subcommand info = add_info(app); info.app) subs.push_back(info);
+  subs.push_back(add_info(app));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -10,12 +10,7 @@
 #include "ebgeom/mesh/triangle_mesh.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
 
-#if __has_include("ebgeom/io/read_mesh.hpp")
 #include "ebgeom/io/read_mesh.hpp"
-#define EBGEOM_CLI_HAS_IO 1
-#else
-#define EBGEOM_CLI_HAS_IO 0
-#endif
 
 #if __has_include("ebgeom/sdf/mesh_sdf.hpp")
 #include "ebgeom/sdf/mesh_sdf.hpp"
@@ -85,13 +80,9 @@ const char* to_string(SignMode m);
 /// Reads a mesh file (STL, PLY, OBJ, legacy VTK; format detected by content). Throws CliError
 /// (input) with the reader's `FILE: line/byte: what` message.
 template <class T> PolygonSoup<T> load_mesh(const std::string& path) {
-#if EBGEOM_CLI_HAS_IO
   auto soup = io::read_mesh<T>(path);
   if (!soup) fail(exit_input, soup.error().what());
   return std::move(*soup);
-#else
-  fail(exit_input, path + ": reading mesh files needs ebgeom's io module, absent from this build");
-#endif
 }
 
 /// Builds the CLI's mesh SDF. Throws CliError (input) naming `path` on failure.
