@@ -15,8 +15,7 @@ namespace {
 constexpr double pi = 3.14159265358979323846;
 
 // Octahedron |x|+|y|+|z| = 1, outward CCW faces, built here independently of the mesh module.
-template <class T>
-std::vector<std::array<Vec3<T>, 3>> octahedron() {
+template <class T> std::vector<std::array<Vec3<T>, 3>> octahedron() {
   std::vector<std::array<Vec3<T>, 3>> tris;
   for (int sx : {-1, 1})
     for (int sy : {-1, 1})
@@ -28,10 +27,9 @@ std::vector<std::array<Vec3<T>, 3>> octahedron() {
   return tris;
 }
 
-}  // namespace
+} // namespace
 
-template <class T>
-class SolidAngleTest : public ::testing::Test {};
+template <class T> class SolidAngleTest : public ::testing::Test {};
 TYPED_TEST_SUITE(SolidAngleTest, test::FloatTypes);
 
 TYPED_TEST(SolidAngleTest, OctantTriangleSubtendsAnEighthOfTheSphere) {
@@ -39,7 +37,8 @@ TYPED_TEST(SolidAngleTest, OctantTriangleSubtendsAnEighthOfTheSphere) {
   // seen from the origin, the triangle (e_x, e_y, e_z) covers exactly one octant: 4π/8
   const T w = solid_angle<T>({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
   EXPECT_NEAR(w, T(pi / 2), test::tol<T>());
-  EXPECT_NEAR(solid_angle<T>({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {0, 1, 0}), T(-pi / 2), test::tol<T>());
+  EXPECT_NEAR(solid_angle<T>({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {0, 1, 0}), T(-pi / 2),
+              test::tol<T>());
   // in the plane, outside the triangle: zero
   EXPECT_EQ(solid_angle<T>({5, 5, 0}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}), T(0));
 }
@@ -47,7 +46,8 @@ TYPED_TEST(SolidAngleTest, OctantTriangleSubtendsAnEighthOfTheSphere) {
 TYPED_TEST(SolidAngleTest, ClosedSurfaceGivesOneInsideZeroOutside) {
   using T = TypeParam;
   const auto tris = octahedron<T>();
-  for (const auto& p : test::random_points(Aabb<T>::of({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5}), 2000)) {
+  for (const auto& p :
+       test::random_points(Aabb<T>::of({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5}), 2000)) {
     const T l1 = std::abs(p.x) + std::abs(p.y) + std::abs(p.z);
     if (std::abs(l1 - 1) < T(1e-3)) continue;
     T w = 0;
@@ -72,9 +72,10 @@ TYPED_TEST(SolidAngleTest, DipoleExpansionConvergesInTheFarField) {
       tris.push_back({at(u0, v0), at(u0, v1), at(u1, v1)});
       tris.push_back({at(u0, v0), at(u1, v1), at(u1, v0)});
     }
-  const auto cl = make_dipole_cluster<T>(0, tris.size(), [&](std::size_t i, Vec3<T>& a, Vec3<T>& b, Vec3<T>& c) {
-    a = tris[i][0], b = tris[i][1], c = tris[i][2];
-  });
+  const auto cl = make_dipole_cluster<T>(0, tris.size(),
+                                         [&](std::size_t i, Vec3<T>& a, Vec3<T>& b, Vec3<T>& c) {
+                                           a = tris[i][0], b = tris[i][1], c = tris[i][2];
+                                         });
   EXPECT_LE(cl.radius, T(1.5));
   std::mt19937_64 rng(3);
   double prev_err = 1e9;
