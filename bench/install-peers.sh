@@ -1,0 +1,16 @@
+#!/bin/sh
+# Installs the Debian 12 packages of the peer libraries that bench/mesh_sdf_bench.cpp compares
+# against (Embree 3, CGAL), only when one is missing. Idempotent, like scripts/install-deps.sh.
+# Usage: sh bench/install-peers.sh   (as root, or with sudo available)
+set -e
+pkgs="libembree-dev libcgal-dev"
+missing=""
+for p in $pkgs; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+SUDO=""
+[ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null 2>&1 && SUDO=sudo
+echo "installing:$missing" >&2
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null

@@ -1,0 +1,715 @@
+// Mesh signed-distance queries: ebgeom's MeshSdf against brute force, Embree 3 and CGAL (issue #4).
+// A plain driver (not Google Benchmark): every method answers the same points in the same process.
+//
+//   sh bench/install-peers.sh     (Debian: libembree-dev, libcgal-dev; peers are optional)
+//   cmake --preset bench && cmake --build --preset bench --target ebgeom_bench_mesh_sdf_bench
+//   build/bench/bench/ebgeom_bench_mesh_sdf_bench MESH | --generate N
+//       [--points N=1000000] [--reps R=5] [--precision float|double|both] [--threads T=2]
+//       [--check M=20000] [--json]
+//
+// For the mesh: parse time (io::read_mesh) or generation time, TriangleMesh build time. For each
+// method: build time, memory, and query throughput (median of R runs) over N uniform random points
+// (fixed seed) in the mesh box grown by 10% of its extent on every side, on 1 and on T threads
+// (ebgeom::parallel_for, dynamic chunks). The first M points check every method's signed distance
+// against ebgeom's (or brute force's when MeshSdf is not built in). See docs/performance.md.
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <malloc.h>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ebgeom/core/parallel.hpp"
+#include "ebgeom/io/read_mesh.hpp"
+#include "ebgeom/mesh/triangle_mesh.hpp"
+#include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
+
+// -DEBGEOM_BENCH_NO_MESH_SDF builds the peers alone (e.g. while mesh_sdf.hpp does not compile).
+#if __has_include("ebgeom/sdf/mesh_sdf.hpp") && !defined(EBGEOM_BENCH_NO_MESH_SDF)
+#include "ebgeom/sdf/mesh_sdf.hpp"
+#define EBGEOM_BENCH_HAVE_MESH_SDF 1
+#endif
+#ifdef EBGEOM_BENCH_HAVE_EMBREE
+#include <embree3/rtcore.h>
+#endif
+#ifdef EBGEOM_BENCH_HAVE_CGAL
+#include "peers/cgal_peer.hpp"
+#endif
+#ifdef EBGEOM_BENCH_HAVE_JSON
+#include <nlohmann/json.hpp>
+#endif
+
+namespace {
+
+using namespace ebgeom;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Heap bytes in use (glibc: main arena + mmapped chunks). Used for CGAL, whose structures have no
+// size query; its build runs on the calling thread, so the main arena sees all of it.
+std::size_t heap_in_use() {
+  const struct mallinfo2 mi = mallinfo2();
+  return mi.uordblks + mi.hblkhd;
+}
+
+struct Options {
+  std::string mesh;
+  std::size_t generate = 0; // > 0: generated bumpy torus of about this many triangles
+  std::size_t points = 1000000;
+  int reps = 5;
+  int threads = 2;
+  std::size_t check = 20000;
+  std::size_t cgal_points = 100000; // CGAL is timed on the first K points (it is slow)
+  bool run_float = false, run_double = true;
+  bool json = false;
+};
+
+// One method at one precision.
+struct Row {
+  std::string method;
+  std::string precision; // the scalar type of the run (input, points, output)
+  std::string compute;   // what the method computes in
+  double build_ms = std::numeric_limits<double>::quiet_NaN();
+  std::size_t memory = 0;
+  std::string memory_note;
+  std::size_t queries = 0; // points per run
+  std::vector<double> qps1, qpst;
+  // agreement with the reference on the first `checked` points
+  std::string reference;
+  std::size_t checked = 0, distance_bad = 0, sign_diff = 0, bitwise_equal = 0;
+  double max_rel = 0, max_abs = 0;
+  std::string note;
+  bool is_reference = false;
+};
+
+struct MeshInfo {
+  std::string name;
+  std::size_t triangles = 0, vertices = 0;
+  double parse_ms = 0, triangle_mesh_ms = 0;
+  bool generated = false;
+  double scale = 0; // max |coordinate| and extent of the box: scale of rounding errors
+};
+
+// ---- generated input ------------------------------------------------------------------------
+
+// A closed torus (major radius 1, tube radius 0.35) whose tube radius is modulated by a sum of
+// sinusoids (+-32%), split into 2 nu nv triangles with nu ~ sqrt(n). Outward oriented, manifold.
+PolygonSoup<double> bumpy_torus(std::size_t n) {
+  const std::size_t nu = std::max<std::size_t>(3, std::size_t(std::llround(std::sqrt(double(n))))),
+                    nv = std::max<std::size_t>(3, n / (2 * nu));
+  const double two_pi = 6.283185307179586476925286766559, R = 1.0, r0 = 0.35;
+  PolygonSoup<double> s;
+  s.reserve(nu * nv, 2 * nu * nv, 6 * nu * nv);
+  for (std::size_t i = 0; i < nu; ++i)
+    for (std::size_t j = 0; j < nv; ++j) {
+      const double u = two_pi * double(i) / double(nu), v = two_pi * double(j) / double(nv);
+      const double r = r0 * (1 + 0.2 * std::sin(3 * u) * std::cos(2 * v) +
+                             0.08 * std::sin(7 * u + 5 * v) + 0.04 * std::cos(13 * u - 9 * v + 1));
+      s.add_vertex({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
+                    r * std::sin(v)});
+    }
+  auto id = [&](std::size_t i, std::size_t j) { return Index((i % nu) * nv + (j % nv)); };
+  for (std::size_t i = 0; i < nu; ++i)
+    for (std::size_t j = 0; j < nv; ++j) {
+      s.add_triangle(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+      s.add_triangle(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+    }
+  return s;
+}
+
+template <class T> PolygonSoup<T> convert_soup(const PolygonSoup<double>& in) {
+  PolygonSoup<T> out;
+  out.vertices.reserve(in.vertices.size());
+  for (const auto& v : in.vertices) out.vertices.push_back(Vec3<T>::from(v));
+  out.indices = in.indices;
+  out.offsets = in.offsets;
+  return out;
+}
+
+// N uniform points in the box grown by 10% of its extent on every side; drawn in double from a
+// fixed seed, so the float and double runs query the same points (rounded).
+template <class T> std::vector<Vec3<T>> random_points(const Aabb<T>& box, std::size_t n) {
+  const Aabb<double> b = Aabb<double>::from(box);
+  const Vec3<double> lo = b.lo - b.extent() * 0.1, hi = b.hi + b.extent() * 0.1;
+  std::mt19937_64 rng(20240604);
+  std::uniform_real_distribution<double> ux(lo.x, hi.x), uy(lo.y, hi.y), uz(lo.z, hi.z);
+  std::vector<Vec3<T>> p(n);
+  for (auto& q : p) {
+    const double x = ux(rng), y = uy(rng), z = uz(rng);
+    q = Vec3<T>::from(Vec3<double>{x, y, z});
+  }
+  return p;
+}
+
+// ---- measurement ----------------------------------------------------------------------------
+
+// Runs `query` over the first `n` points R times on one thread, then R times on T threads; stores
+// queries/s per run and the outputs (identical in every run).
+template <class T, class Query>
+void measure(Row& row, const Query& query, const std::vector<Vec3<T>>& pts, std::size_t n,
+             const Options& o, std::vector<T>& out) {
+  row.queries = n;
+  out.assign(n, T(0));
+  for (int r = 0; r < o.reps; ++r) {
+    const auto t0 = Clock::now();
+    for (std::size_t i = 0; i < n; ++i) out[i] = query(pts[i]);
+    row.qps1.push_back(double(n) / (ms_since(t0) * 1e-3));
+  }
+  if (o.threads <= 1) return;
+  ExecOptions ex;
+  ex.threads = o.threads;
+  ex.serial_threshold = 0;
+  const std::size_t grain =
+      std::clamp<std::size_t>(n / (64 * std::size_t(o.threads)), std::size_t(16), 1024);
+  for (int r = 0; r < o.reps; ++r) {
+    const auto t0 = Clock::now();
+    parallel_for(
+        0, n, grain,
+        [&](std::size_t b, std::size_t e) {
+          for (std::size_t i = b; i < e; ++i) out[i] = query(pts[i]);
+        },
+        ex);
+    row.qpst.push_back(double(n) / (ms_since(t0) * 1e-3));
+  }
+}
+
+// Compares `got` with `ref` on the first `m` values: |distance| within rel |ref| + floor, sign.
+template <class T>
+void check(Row& row, const std::string& ref_name, const std::vector<T>& ref,
+           const std::vector<T>& got, std::size_t m, double rel, double floor) {
+  m = std::min({m, ref.size(), got.size()});
+  row.reference = ref_name;
+  row.checked = m;
+  for (std::size_t i = 0; i < m; ++i) {
+    const double a = double(ref[i]), b = double(got[i]);
+    const double err = std::abs(std::abs(a) - std::abs(b));
+    if (!(err <= rel * std::abs(a) + floor)) ++row.distance_bad;
+    if ((a < 0) != (b < 0)) ++row.sign_diff;
+    if (ref[i] == got[i]) ++row.bitwise_equal;
+    row.max_abs = std::max(row.max_abs, err);
+    if (std::abs(a) > floor) row.max_rel = std::max(row.max_rel, err / std::abs(a));
+  }
+}
+
+// ---- Embree 3 --------------------------------------------------------------------------------
+
+#ifdef EBGEOM_BENCH_HAVE_EMBREE
+bool embree_memory_monitor(void* user, ssize_t bytes, bool /*post*/) {
+  static_cast<std::atomic<long long>*>(user)->fetch_add(bytes, std::memory_order_relaxed);
+  return true;
+}
+
+// Embree's BVH over float copies of the triangles; the closest triangle comes from rtcPointQuery
+// with a callback that computes the closest point on each candidate triangle and shrinks the
+// query radius (Embree's closest_point tutorial). The sign (and, in double runs, the distance) is
+// then computed on the winning triangle with ebgeom's kernel and pseudonormals: what a user of
+// Embree needing signed distances would write.
+template <class T> class EmbreePeer {
+ public:
+  EmbreePeer(RTCDevice device, const TriangleMesh<T>& mesh) : mesh_(mesh) {
+    // +1: Embree reads vertex buffers 16 bytes at a time, so the last one needs 4 bytes of padding.
+    vertices_.resize(mesh.vertex_count() + 1, Vec3<float>{0, 0, 0});
+    for (std::size_t i = 0; i < mesh.vertex_count(); ++i)
+      vertices_[i] = Vec3<float>::from(mesh.vertices[i]);
+    triangles_ = mesh.triangles;
+    scene_ = rtcNewScene(device);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices_.data(), 0,
+                               sizeof(Vec3<float>), mesh.vertex_count());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, triangles_.data(), 0,
+                               sizeof(triangles_[0]), triangles_.size());
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(scene_);
+  }
+  ~EmbreePeer() { rtcReleaseScene(scene_); }
+  EmbreePeer(const EmbreePeer&) = delete;
+  EmbreePeer& operator=(const EmbreePeer&) = delete;
+
+  std::size_t buffer_bytes() const noexcept {
+    return vertices_.size() * sizeof(vertices_[0]) + triangles_.size() * sizeof(triangles_[0]);
+  }
+
+  T operator()(const Vec3<T>& p) const noexcept {
+    RTCPointQuery q; // 16-byte aligned by its declaration
+    q.x = float(p.x);
+    q.y = float(p.y);
+    q.z = float(p.z);
+    q.time = 0.f;
+    q.radius = std::numeric_limits<float>::infinity();
+    RTCPointQueryContext ctx;
+    rtcInitPointQueryContext(&ctx);
+    Closest c{vertices_.data(), triangles_.data(), MeshClosestPoint<T>::invalid_triangle};
+    rtcPointQuery(scene_, &q, &ctx, &EmbreePeer::callback, &c);
+    if (c.triangle == MeshClosestPoint<T>::invalid_triangle)
+      return std::numeric_limits<T>::infinity();
+    return triangle_signed_distance(mesh_, c.triangle, p).distance;
+  }
+
+ private:
+  struct Closest {
+    const Vec3<float>* vertices;
+    const std::array<Index, 3>* triangles;
+    Index triangle;
+  };
+  static bool callback(RTCPointQueryFunctionArguments* args) {
+    Closest& c = *static_cast<Closest*>(args->userPtr);
+    const auto& t = c.triangles[args->primID];
+    const Vec3<float> q{args->query->x, args->query->y, args->query->z};
+    const TriangleClosestPoint<float> cp =
+        closest_point_triangle(q, c.vertices[t[0]], c.vertices[t[1]], c.vertices[t[2]]);
+    const float d = std::sqrt(cp.distance2);
+    if (d < args->query->radius) {
+      args->query->radius = d;
+      c.triangle = args->primID;
+      return true;
+    }
+    return false;
+  }
+
+  const TriangleMesh<T>& mesh_;
+  std::vector<Vec3<float>> vertices_;
+  std::vector<std::array<Index, 3>> triangles_;
+  RTCScene scene_ = nullptr;
+};
+#endif
+
+// ---- one precision --------------------------------------------------------------------------
+
+template <class T> const char* type_name() { return sizeof(T) == 4 ? "float" : "double"; }
+
+template <class T> Result<PolygonSoup<T>> load(const Options& o, MeshInfo& info) {
+  const auto t0 = Clock::now();
+  if (o.generate > 0) {
+    PolygonSoup<T> s = convert_soup<T>(bumpy_torus(o.generate));
+    info.parse_ms = ms_since(t0);
+    info.generated = true;
+    info.name = "generated bumpy torus";
+    return s;
+  }
+  auto r = io::read_mesh<T>(o.mesh);
+  info.parse_ms = ms_since(t0);
+  info.name = o.mesh.substr(
+      o.mesh.find_last_of('/') == std::string::npos ? 0 : o.mesh.find_last_of('/') + 1);
+  if (!r) return make_error(r.error().code, r.error().what());
+  return std::move(*r);
+}
+
+struct PrecisionRun {
+  std::string precision;
+  MeshInfo mesh;
+  std::vector<Row> rows;
+  std::string error;
+};
+
+template <class T> PrecisionRun run_precision(const Options& o) {
+  PrecisionRun run;
+  run.precision = type_name<T>();
+  Result<PolygonSoup<T>> soup = load<T>(o, run.mesh);
+  if (!soup) {
+    run.error = soup.error().what();
+    return run;
+  }
+  auto t0 = Clock::now();
+  Result<TriangleMesh<T>> made = make_triangle_mesh(*soup);
+  run.mesh.triangle_mesh_ms = ms_since(t0);
+  if (!made) {
+    run.error = made.error().what();
+    return run;
+  }
+  const TriangleMesh<T>& mesh = *made;
+  run.mesh.triangles = mesh.triangle_count();
+  run.mesh.vertices = mesh.vertex_count();
+  const Aabb<T> box = mesh.bounds();
+  {
+    const Aabb<double> b = Aabb<double>::from(box);
+    run.mesh.scale =
+        std::max({max_component(abs(b.lo)), max_component(abs(b.hi)), max_component(b.extent())});
+  }
+  const std::vector<Vec3<T>> pts = random_points(box, o.points);
+  const std::size_t m = std::min(o.check, o.points);
+  // Tolerances: relative 1e-5 (float) / 1e-9 (double) plus 16 rounding units of the coordinates.
+  const double rel_t = sizeof(T) == 4 ? 1e-5 : 1e-9;
+  const double floor_t = 16 * double(std::numeric_limits<T>::epsilon()) * run.mesh.scale;
+  const double floor_f = 16 * double(std::numeric_limits<float>::epsilon()) * run.mesh.scale;
+  const std::size_t nt = std::max<std::size_t>(mesh.triangle_count(), 1);
+
+  std::vector<T> ref;
+  std::string ref_name;
+
+#ifdef EBGEOM_BENCH_HAVE_MESH_SDF
+  std::vector<T> out_ebgeom;
+  {
+    Row row;
+    row.method = "ebgeom";
+    row.precision = row.compute = type_name<T>();
+    std::vector<double> builds;
+    std::unique_ptr<MeshSdf<T>> sdf;
+    for (int r = 0; r < o.reps; ++r) {
+      sdf.reset();
+      TriangleMesh<T> copy = mesh; // MeshSdf owns its mesh; the copy is not the build
+      t0 = Clock::now();
+      auto made_sdf = MeshSdf<T>::make(std::move(copy));
+      builds.push_back(ms_since(t0));
+      if (!made_sdf) {
+        run.error = std::string("MeshSdf::make: ") + made_sdf.error().what();
+        return run;
+      }
+      sdf = std::make_unique<MeshSdf<T>>(std::move(*made_sdf));
+    }
+    row.build_ms = median(builds);
+    row.memory = sdf->memory_bytes();
+    row.memory_note = "MeshSdf::memory_bytes() (BVH + triangle data)";
+    const MeshSdf<T>& s = *sdf;
+    measure(
+        row, [&](const Vec3<T>& p) { return s(p); }, pts, o.points, o, out_ebgeom);
+    row.is_reference = true;
+    run.rows.push_back(std::move(row));
+    ref = out_ebgeom;
+    ref_name = "ebgeom";
+  }
+#endif
+
+  // Brute force: the exact oracle (O(n) per query), on a subset sized to the mesh.
+  {
+    Row row;
+    row.method = "brute";
+    row.precision = row.compute = type_name<T>();
+    t0 = Clock::now();
+    const BruteForceMeshSdf<T> brute(mesh);
+    row.build_ms = ms_since(t0);
+    row.memory = brute.mesh().memory_bytes();
+    row.memory_note = "TriangleMesh::memory_bytes() (its copy of the mesh)";
+    const std::size_t nb = std::min<std::size_t>(
+        o.points, std::clamp<std::size_t>(std::size_t(4e8) / nt, std::size_t(50), 2000));
+    std::vector<T> out;
+    measure(
+        row, [&](const Vec3<T>& p) { return brute(p); }, pts, nb, o, out);
+    row.note = "on the first " + std::to_string(nb) + " points";
+    if (ref.empty()) {
+      // No MeshSdf: brute force is the reference, on as many check points as affordable.
+      const std::size_t mr =
+          std::min<std::size_t>(m, std::max<std::size_t>(nb, std::size_t(5e9) / nt));
+      ref.assign(mr, T(0));
+      ExecOptions ex;
+      ex.threads = o.threads;
+      parallel_for(
+          0, mr, 64,
+          [&](std::size_t b, std::size_t e) {
+            for (std::size_t i = b; i < e; ++i) ref[i] = brute(pts[i]);
+          },
+          ex);
+      ref_name = "brute";
+      row.is_reference = true;
+    } else {
+      check(row, ref_name, ref, out, nb, rel_t, floor_t);
+    }
+    run.rows.push_back(std::move(row));
+  }
+
+#ifdef EBGEOM_BENCH_HAVE_EMBREE
+  {
+    Row row;
+    row.method = "embree";
+    row.precision = type_name<T>();
+    row.compute = sizeof(T) == 4 ? "float" : "float BVH; double distance on the winner";
+    std::atomic<long long> device_bytes{0};
+    RTCDevice device = rtcNewDevice(nullptr);
+    rtcSetDeviceMemoryMonitorFunction(device, &embree_memory_monitor, &device_bytes);
+    std::vector<double> builds;
+    std::unique_ptr<EmbreePeer<T>> peer;
+    long long bvh_bytes = 0;
+    for (int r = 0; r < o.reps; ++r) {
+      peer.reset();
+      const long long before = device_bytes.load();
+      t0 = Clock::now();
+      peer = std::make_unique<EmbreePeer<T>>(device, mesh);
+      builds.push_back(ms_since(t0));
+      bvh_bytes = device_bytes.load() - before;
+    }
+    row.build_ms = median(builds);
+    row.memory = std::size_t(std::max(0LL, bvh_bytes)) + peer->buffer_bytes() + mesh.memory_bytes();
+    row.memory_note = "Embree device allocations " + std::to_string(bvh_bytes) +
+                      " + float vertex/index buffers " + std::to_string(peer->buffer_bytes()) +
+                      " + TriangleMesh (pseudonormals for the sign) " +
+                      std::to_string(mesh.memory_bytes());
+    std::vector<T> out;
+    const EmbreePeer<T>& e = *peer;
+    measure(
+        row, [&](const Vec3<T>& p) { return e(p); }, pts, o.points, o, out);
+    if (sizeof(T) != 4) row.note = "Embree computes in float";
+    check(row, ref_name, ref, out, m, 1e-5, floor_f);
+    peer.reset();
+    rtcReleaseDevice(device);
+    run.rows.push_back(std::move(row));
+  }
+#endif
+
+#ifdef EBGEOM_BENCH_HAVE_CGAL
+  {
+    Row row;
+    row.method = "cgal";
+    row.precision = type_name<T>();
+    row.compute = "double (Epick)";
+    std::vector<double> xyz(3 * mesh.vertex_count());
+    for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+      xyz[3 * i] = double(mesh.vertices[i].x);
+      xyz[3 * i + 1] = double(mesh.vertices[i].y);
+      xyz[3 * i + 2] = double(mesh.vertices[i].z);
+    }
+    std::vector<double> builds;
+    std::unique_ptr<ebgeom_bench::CgalPeer> peer;
+    std::size_t bytes = 0;
+    for (int r = 0; r < o.reps; ++r) {
+      peer.reset();
+      const std::size_t before = heap_in_use();
+      t0 = Clock::now();
+      peer = std::make_unique<ebgeom_bench::CgalPeer>(
+          xyz.data(), mesh.vertex_count(), mesh.triangles.data()->data(), mesh.triangle_count());
+      builds.push_back(ms_since(t0));
+      bytes = heap_in_use() - before;
+    }
+    row.build_ms = median(builds);
+    row.memory = bytes;
+    row.memory_note = "heap growth over the build (Surface_mesh + AABB tree + KD-tree of hints)";
+    if (peer->failed_faces() > 0)
+      row.note = std::to_string(peer->failed_faces()) + " faces refused by Surface_mesh; ";
+    if (!peer->closed()) row.note += "not closed (Side_of_triangle_mesh precondition); ";
+    std::vector<T> out;
+    const ebgeom_bench::CgalPeer& c = *peer;
+    measure(
+        row,
+        [&](const Vec3<T>& p) {
+          return T(c.signed_distance(double(p.x), double(p.y), double(p.z)));
+        },
+        pts, std::min(o.points, o.cgal_points), o, out);
+    if (row.queries < o.points)
+      row.note += "timed on the first " + std::to_string(row.queries) + " points; ";
+    check(row, ref_name, ref, out, m, rel_t, floor_t);
+    while (!row.note.empty() && (row.note.back() == ' ' || row.note.back() == ';'))
+      row.note.pop_back();
+    run.rows.push_back(std::move(row));
+  }
+#endif
+  return run;
+}
+
+// ---- output ---------------------------------------------------------------------------------
+
+double qps(const std::vector<double>& v) { return median(v); }
+
+const Row* find(const PrecisionRun& run, const std::string& method) {
+  for (const Row& r : run.rows)
+    if (r.method == method) return &r;
+  return nullptr;
+}
+
+void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
+  for (const PrecisionRun& run : runs) {
+    if (!run.error.empty()) {
+      std::printf("[%s] error: %s\n", run.precision.c_str(), run.error.c_str());
+      continue;
+    }
+    const MeshInfo& mi = run.mesh;
+    std::printf("\n== %s, %s: %zu triangles, %zu vertices; %s %.1f ms; TriangleMesh %.1f ms\n",
+                mi.name.c_str(), run.precision.c_str(), mi.triangles, mi.vertices,
+                mi.generated ? "generate" : "parse", mi.parse_ms, mi.triangle_mesh_ms);
+    std::printf("   %zu uniform points in the box + 10%%, %d runs (median), %d threads\n", o.points,
+                o.reps, o.threads);
+    std::printf("%-8s %-7s %10s %9s %7s %12s %12s %7s  %s\n", "method", "prec", "build ms", "MB",
+                "B/tri", "1-thr kq/s", (std::to_string(o.threads) + "-thr kq/s").c_str(), "scaling",
+                "note");
+    for (const Row& r : run.rows) {
+      const double q1 = qps(r.qps1), qt = qps(r.qpst);
+      std::printf("%-8s %-7s %10.2f %9.2f %7.1f %12.1f %12.1f %7.2f  %s%s\n", r.method.c_str(),
+                  r.precision.c_str(), r.build_ms, double(r.memory) / 1e6,
+                  double(r.memory) / double(std::max<std::size_t>(mi.triangles, 1)), q1 / 1e3,
+                  qt / 1e3, qt / q1, r.compute == r.precision ? "" : (r.compute + "; ").c_str(),
+                  r.note.c_str());
+    }
+    std::printf("agreement (first points; |d| within rel %g (embree 1e-5) + 16 ulp of the "
+                "coordinates):\n",
+                run.precision == "float" ? 1e-5 : 1e-9);
+    for (const Row& r : run.rows) {
+      if (r.is_reference) {
+        std::printf("  %-8s reference\n", r.method.c_str());
+        continue;
+      }
+      std::printf("  %-8s vs %-7s %7zu points: %zu |d| out of tolerance, %zu sign differences "
+                  "(%.4f%%), max rel err %.2e, max abs err %.2e (%.2e of scale), %zu bitwise "
+                  "equal\n",
+                  r.method.c_str(), r.reference.c_str(), r.checked, r.distance_bad, r.sign_diff,
+                  r.checked ? 100.0 * double(r.sign_diff) / double(r.checked) : 0.0, r.max_rel,
+                  r.max_abs, r.max_abs / mi.scale, r.bitwise_equal);
+    }
+    const Row* eb = find(run, "ebgeom");
+    if (eb) {
+      std::printf("ratios ebgeom / peer (build and memory: < 1 is smaller; throughput: > 1 is "
+                  "faster):\n");
+      std::printf("  %-8s %9s %9s %12s %12s\n", "peer", "build", "memory", "1-thr q/s",
+                  (std::to_string(o.threads) + "-thr q/s").c_str());
+      for (const Row& r : run.rows) {
+        if (&r == eb) continue;
+        std::printf("  %-8s %9.2f %9.2f %12.1f %12.1f\n", r.method.c_str(),
+                    eb->build_ms / r.build_ms, double(eb->memory) / double(r.memory),
+                    qps(eb->qps1) / qps(r.qps1), qps(eb->qpst) / qps(r.qpst));
+      }
+    }
+  }
+}
+
+#ifdef EBGEOM_BENCH_HAVE_JSON
+nlohmann::json to_json(const Options& o, const std::vector<PrecisionRun>& runs) {
+  nlohmann::json j;
+  j["mesh"] = o.generate ? "generated bumpy torus" : o.mesh;
+  j["points"] = o.points;
+  j["reps"] = o.reps;
+  j["threads"] = o.threads;
+  j["check"] = o.check;
+  j["runs"] = nlohmann::json::array();
+  for (const PrecisionRun& run : runs) {
+    nlohmann::json jr;
+    jr["precision"] = run.precision;
+    if (!run.error.empty()) {
+      jr["error"] = run.error;
+      j["runs"].push_back(jr);
+      continue;
+    }
+    const MeshInfo& mi = run.mesh;
+    jr["triangles"] = mi.triangles;
+    jr["vertices"] = mi.vertices;
+    jr[mi.generated ? "generate_ms" : "parse_ms"] = mi.parse_ms;
+    jr["triangle_mesh_ms"] = mi.triangle_mesh_ms;
+    jr["scale"] = mi.scale;
+    jr["methods"] = nlohmann::json::array();
+    for (const Row& r : run.rows) {
+      nlohmann::json m;
+      m["method"] = r.method;
+      m["precision"] = r.precision;
+      m["compute"] = r.compute;
+      m["build_ms"] = r.build_ms;
+      m["memory_bytes"] = r.memory;
+      m["bytes_per_triangle"] = double(r.memory) / double(std::max<std::size_t>(mi.triangles, 1));
+      m["memory_note"] = r.memory_note;
+      m["queries"] = r.queries;
+      m["qps_1"] = qps(r.qps1);
+      m["qps_threads"] = qps(r.qpst);
+      m["scaling"] = qps(r.qpst) / qps(r.qps1);
+      m["qps_1_runs"] = r.qps1;
+      m["qps_threads_runs"] = r.qpst;
+      if (r.is_reference) {
+        m["reference"] = true;
+      } else {
+        m["check"] = {{"reference", r.reference},         {"points", r.checked},
+                      {"distance_bad", r.distance_bad},   {"sign_diff", r.sign_diff},
+                      {"bitwise_equal", r.bitwise_equal}, {"max_rel_err", r.max_rel},
+                      {"max_abs_err", r.max_abs}};
+      }
+      if (!r.note.empty()) m["note"] = r.note;
+      jr["methods"].push_back(m);
+    }
+    if (const Row* eb = find(run, "ebgeom")) {
+      nlohmann::json ratios;
+      for (const Row& r : run.rows) {
+        if (&r == eb) continue;
+        ratios[r.method] = {{"build", eb->build_ms / r.build_ms},
+                            {"memory", double(eb->memory) / double(r.memory)},
+                            {"qps_1", qps(eb->qps1) / qps(r.qps1)},
+                            {"qps_threads", qps(eb->qpst) / qps(r.qpst)}};
+      }
+      jr["ratios_ebgeom_over_peer"] = ratios;
+    }
+    j["runs"].push_back(jr);
+  }
+  return j;
+}
+#endif
+
+int usage(const char* argv0) {
+  std::fprintf(stderr,
+               "usage: %s MESH | --generate N  [--points N=1000000] [--reps R=5]\n"
+               "       [--precision float|double|both] [--threads T=2] [--check M=20000] "
+               "[--cgal-points K=100000] [--json]\n",
+               argv0);
+  return 2;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  std::string precision = "double";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+    const char* v = nullptr;
+    if (a == "--json") {
+      o.json = true;
+    } else if (a == "--points" && (v = next())) {
+      o.points = std::strtoull(v, nullptr, 10);
+    } else if (a == "--reps" && (v = next())) {
+      o.reps = std::max(1, std::atoi(v));
+    } else if (a == "--threads" && (v = next())) {
+      o.threads = std::max(1, std::atoi(v));
+    } else if (a == "--check" && (v = next())) {
+      o.check = std::strtoull(v, nullptr, 10);
+    } else if (a == "--cgal-points" && (v = next())) {
+      o.cgal_points = std::max<std::size_t>(1, std::strtoull(v, nullptr, 10));
+    } else if (a == "--generate" && (v = next())) {
+      o.generate = std::strtoull(v, nullptr, 10);
+    } else if (a == "--precision" && (v = next())) {
+      precision = v;
+    } else if (!a.empty() && a[0] != '-' && o.mesh.empty()) {
+      o.mesh = a;
+    } else {
+      return usage(argv[0]);
+    }
+  }
+  if ((o.mesh.empty() == (o.generate == 0)) || o.points == 0) return usage(argv[0]);
+  if (precision != "float" && precision != "double" && precision != "both") return usage(argv[0]);
+  o.run_float = precision != "double";
+  o.run_double = precision != "float";
+#ifndef EBGEOM_BENCH_HAVE_JSON
+  if (o.json) {
+    std::fprintf(stderr, "--json needs nlohmann-json at build time\n");
+    return 2;
+  }
+#endif
+  std::vector<PrecisionRun> runs;
+  if (o.run_float) runs.push_back(run_precision<float>(o));
+  if (o.run_double) runs.push_back(run_precision<double>(o));
+#ifdef EBGEOM_BENCH_HAVE_JSON
+  if (o.json) {
+    std::printf("%s\n", to_json(o, runs).dump(2).c_str());
+  } else
+#endif
+  {
+#ifndef EBGEOM_BENCH_HAVE_MESH_SDF
+    std::printf("note: ebgeom/sdf/mesh_sdf.hpp not found; MeshSdf not measured\n");
+#endif
+    print_text(o, runs);
+  }
+  for (const PrecisionRun& r : runs)
+    if (!r.error.empty()) return 1;
+  return 0;
+}
