@@ -2,6 +2,7 @@
 /// \file
 /// Umbrella header: includes every public module. Users may include finer headers instead.
 
+#include "ebgeom/bvh.hpp"
 #include "ebgeom/core.hpp"
 #include "ebgeom/eval.hpp"
 #include "ebgeom/geom.hpp"

@@ -41,6 +41,16 @@ triangle_signed_distance(const TriangleMesh<T>& mesh, std::size_t t, const Vec3<
                                   mesh.edge_normals[t].data(), vn);
 }
 
+/// Pseudonormal of `feature` of triangle `t`: the face normal, an edge pseudonormal or a vertex
+/// pseudonormal. Precondition: t < mesh.triangle_count().
+template <class T>
+EBGEOM_FORCE_INLINE const Vec3<T>& feature_pseudonormal(const TriangleMesh<T>& mesh, std::size_t t,
+                                                        TriangleFeature feature) noexcept {
+  return is_vertex(feature) ? mesh.vertex_normals[mesh.triangles[t][vertex_index(feature)]]
+                            : (is_edge(feature) ? mesh.edge_normals[t][edge_index(feature)]
+                                                : mesh.face_normals[t]);
+}
+
 /// Exact signed distance to a closed, consistently oriented, manifold triangle mesh (check with
 /// `validate`; on other meshes the magnitude is still the unsigned distance but the sign may be
 /// wrong near defects). Every query scans all triangles: O(n). The nearest triangle is the first
@@ -79,13 +89,8 @@ template <class T> class BruteForceMeshSdf {
       }
     }
     if (best.triangle == MeshClosestPoint<T>::invalid_triangle) return best;
-    const auto& tri = mesh_.triangles[best.triangle];
-    const Vec3<T>& n =
-        is_vertex(best.feature)
-            ? mesh_.vertex_normals[tri[vertex_index(best.feature)]]
-            : (is_edge(best.feature) ? mesh_.edge_normals[best.triangle][edge_index(best.feature)]
-                                     : mesh_.face_normals[best.triangle]);
-    best.distance = signed_distance_from(p, best.point, best2, n);
+    best.distance = signed_distance_from(p, best.point, best2,
+                                         feature_pseudonormal(mesh_, best.triangle, best.feature));
     return best;
   }
 

@@ -1,0 +1,394 @@
+#pragma once
+/// \file
+/// BVH construction: the index-based builder tree `BuildTree<T>` and the builders that make it.
+///
+/// Builders know nothing about triangles or shapes: they take one box and one centroid per
+/// primitive. Top-down construction is driven by two function objects (template parameters, never
+/// `std::function` per node): a *stop* predicate that decides whether a node becomes a leaf, and a
+/// *partition* that splits a node's primitives into 2..16 parts. Ready ones:
+///  - `SahPartition`: binned surface-area heuristic (binary splits; the default);
+///  - `MedianPartition`: split at the median centroid along the longest axis (binary);
+///  - `ChunkPartition<K>`: the EBGeometry seeds' partitioner: sort centroids along the longest
+///    axis of their box and cut into K equal chunks (K-ary);
+///  - `LeafSizeStop`: leaf when a node holds at most `max_leaf_size` primitives.
+/// `build_morton` is the bottom-up alternative: 63-bit Morton codes of the centroids, sorted, and a
+/// hierarchy split at the highest differing bit (LBVH).
+///
+/// Depth is bounded by `max_build_depth` (a node that deep becomes a leaf whatever its size), and
+/// a partition that returns no useful split is replaced by an index-median split, so every build
+/// terminates and the traversal stack size proven from the depth is always enough.
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
+#include "ebgeom/core/span.hpp"
+#include "ebgeom/core/vec.hpp"
+
+namespace ebgeom::bvh {
+
+/// Largest number of children a builder node may have (partitions return at most this many parts).
+inline constexpr int max_build_children = 16;
+/// Nodes at this depth become leaves whatever their size.
+inline constexpr int max_build_depth = 64;
+
+/// One node of the builder tree. Leaf: `children == 0`, primitives `prim[first .. first+count)`.
+/// Inner: children are the consecutive nodes `nodes[first .. first+children)`.
+template <class T> struct BuildNode {
+  Aabb<T> box;
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;    ///< leaf: number of primitives; inner: 0
+  std::uint32_t children = 0; ///< inner: number of children; leaf: 0
+  bool is_leaf() const noexcept { return children == 0; }
+};
+
+/// The builder tree: index-based, root at `nodes[0]`, and one permutation `prim` (leaf order ->
+/// input primitive index). Every primitive appears in exactly one leaf.
+template <class T> struct BuildTree {
+  std::vector<BuildNode<T>> nodes;
+  std::vector<std::uint32_t> prim;
+  int depth = 0; ///< number of levels (a single leaf has depth 1); <= max_build_depth + 1
+
+  bool empty() const noexcept { return nodes.empty(); }
+  std::size_t leaf_count() const noexcept {
+    return std::size_t(std::count_if(nodes.begin(), nodes.end(),
+                                     [](const BuildNode<T>& n) { return n.is_leaf(); }));
+  }
+};
+
+/// What a partition sees of the node it splits.
+template <class T> struct PartitionInput {
+  Span<const Aabb<T>> boxes;      ///< per input primitive
+  Span<const Vec3<T>> centroids;  ///< per input primitive
+  Aabb<T> box;                    ///< the node's box (union of its primitives' boxes)
+  Aabb<T> centroid_box;           ///< box of its primitives' centroids
+  int depth = 0;                  ///< the node's depth (root = 0)
+};
+
+/// Output of a partition: part i is `idx[ends[i-1] .. ends[i])` (ends[-1] = 0) after the
+/// partition reordered `idx`; `count` parts, `ends[count-1]` = the node's size.
+struct Parts {
+  int count = 0;
+  std::array<std::uint32_t, max_build_children> ends{};
+};
+
+/// How the ready-made builder splits nodes.
+enum class BuildMethod : std::uint8_t {
+  sah_binned, ///< binned surface-area heuristic (default; best queries)
+  median,     ///< median split on the longest centroid axis
+  morton,     ///< bottom-up from Morton codes (fastest build)
+};
+
+/// Options of `build`.
+struct BuildOptions {
+  BuildMethod method = BuildMethod::sah_binned;
+  std::uint32_t max_leaf_size = 4; ///< a node with at most this many primitives becomes a leaf
+  int bins = 16;                   ///< SAH bins per axis (2..64)
+};
+
+/// Leaf when a node holds at most `max_leaf_size` primitives.
+struct LeafSizeStop {
+  std::uint32_t max_leaf_size = 4;
+  template <class T>
+  bool operator()(const PartitionInput<T>&, std::uint32_t count) const noexcept {
+    return count <= max_leaf_size;
+  }
+};
+
+namespace detail {
+/// Sorts `idx` by centroid coordinate `axis`, ties by index (deterministic on any platform).
+template <class T>
+void sort_by_axis(std::uint32_t* idx, std::uint32_t n, Span<const Vec3<T>> c, int axis) {
+  std::sort(idx, idx + n, [&](std::uint32_t a, std::uint32_t b) {
+    const T ca = c[a][axis], cb = c[b][axis];
+    return ca < cb || (ca == cb && a < b);
+  });
+}
+/// Median split into two halves along the longest centroid axis (always makes progress for n >= 2).
+template <class T>
+Parts median_split(const PartitionInput<T>& in, std::uint32_t* idx, std::uint32_t n) {
+  const int axis = in.centroid_box.longest_axis();
+  const std::uint32_t mid = n / 2;
+  std::nth_element(idx, idx + mid, idx + n, [&](std::uint32_t a, std::uint32_t b) {
+    const T ca = in.centroids[a][axis], cb = in.centroids[b][axis];
+    return ca < cb || (ca == cb && a < b);
+  });
+  Parts p;
+  p.count = 2;
+  p.ends[0] = mid;
+  p.ends[1] = n;
+  return p;
+}
+} // namespace detail
+
+/// Median split on the longest centroid axis: two halves of equal size.
+struct MedianPartition {
+  template <class T>
+  Parts operator()(const PartitionInput<T>& in, std::uint32_t* idx, std::uint32_t n) const {
+    return detail::median_split(in, idx, n);
+  }
+};
+
+/// The seeds' partitioner: sort centroids along the longest axis of their box, cut into `K` chunks
+/// of (nearly) equal size. O(n log n) per node.
+template <int K> struct ChunkPartition {
+  static_assert(K >= 2 && K <= max_build_children, "ChunkPartition<K> needs 2 <= K <= 16");
+  template <class T>
+  Parts operator()(const PartitionInput<T>& in, std::uint32_t* idx, std::uint32_t n) const {
+    detail::sort_by_axis(idx, n, in.centroids, in.centroid_box.longest_axis());
+    Parts p;
+    const std::uint32_t k = std::min<std::uint32_t>(K, n);
+    for (std::uint32_t i = 0; i < k; ++i)
+      p.ends[i] = std::uint32_t((std::uint64_t(n) * (i + 1)) / k);
+    p.count = int(k);
+    return p;
+  }
+};
+
+/// Binned surface-area heuristic: for each axis, `bins` bins over the centroid box; the split
+/// minimising area(L)·|L| + area(R)·|R| wins. Falls back to a median split when all centroids
+/// coincide. O(n · axes) per node.
+struct SahPartition {
+  int bins = 16;
+  template <class T>
+  Parts operator()(const PartitionInput<T>& in, std::uint32_t* idx, std::uint32_t n) const {
+    constexpr int max_bins = 64;
+    const int nb = std::max(2, std::min(bins, max_bins));
+    const Vec3<T> lo = in.centroid_box.lo, ext = in.centroid_box.extent();
+    T best_cost = std::numeric_limits<T>::infinity();
+    int best_axis = -1, best_bin = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(ext[axis] > T(0))) continue;
+      const T scale = T(nb) / ext[axis];
+      Aabb<T> bbox[max_bins];
+      std::uint32_t bcount[max_bins] = {};
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const std::uint32_t p = idx[i];
+        const int b = std::min(nb - 1, int((in.centroids[p][axis] - lo[axis]) * scale));
+        bbox[b].extend(in.boxes[p]);
+        ++bcount[b];
+      }
+      T right_cost[max_bins];
+      Aabb<T> acc;
+      std::uint32_t cnt = 0;
+      for (int b = nb - 1; b > 0; --b) {
+        acc.extend(bbox[b]);
+        cnt += bcount[b];
+        right_cost[b] = cnt ? acc.half_area() * T(cnt) : T(0);
+      }
+      acc = Aabb<T>();
+      cnt = 0;
+      for (int b = 0; b < nb - 1; ++b) {
+        acc.extend(bbox[b]);
+        cnt += bcount[b];
+        if (cnt == 0 || cnt == n) continue;
+        const T cost = acc.half_area() * T(cnt) + right_cost[b + 1];
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_axis = axis;
+          best_bin = b;
+        }
+      }
+    }
+    if (best_axis < 0) return detail::median_split(in, idx, n);
+    const T scale = T(nb) / ext[best_axis];
+    std::uint32_t* mid = std::partition(idx, idx + n, [&](std::uint32_t p) {
+      return std::min(nb - 1, int((in.centroids[p][best_axis] - lo[best_axis]) * scale)) <=
+             best_bin;
+    });
+    Parts parts;
+    parts.count = 2;
+    parts.ends[0] = std::uint32_t(mid - idx);
+    parts.ends[1] = n;
+    return parts;
+  }
+};
+
+/// Top-down construction with a user partition and stop predicate (see the file comment).
+/// `boxes` and `centroids` have one entry per primitive (same size). Parts the partition returns
+/// empty are dropped; if fewer than two non-empty parts remain, or the partition returns more than
+/// `max_build_children` parts, an index-median split is used instead. O(n log n) for balanced
+/// partitions. Deterministic.
+template <class T, class Partition, class Stop>
+BuildTree<T> build_top_down(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
+                            const Partition& partition, const Stop& stop) {
+  EBGEOM_ASSERT(boxes.size() == centroids.size());
+  BuildTree<T> tree;
+  const std::uint32_t n = std::uint32_t(boxes.size());
+  if (n == 0) return tree;
+  tree.prim.resize(n);
+  std::iota(tree.prim.begin(), tree.prim.end(), 0u);
+  tree.nodes.reserve(2 * std::size_t(n));
+  tree.nodes.emplace_back();
+  struct Task {
+    std::uint32_t node, begin, end;
+    int depth;
+  };
+  std::vector<Task> todo{{0, 0, n, 0}};
+  while (!todo.empty()) {
+    const Task t = todo.back();
+    todo.pop_back();
+    PartitionInput<T> in{boxes, centroids, Aabb<T>(), Aabb<T>(), t.depth};
+    for (std::uint32_t i = t.begin; i < t.end; ++i) {
+      in.box.extend(boxes[tree.prim[i]]);
+      in.centroid_box.extend(centroids[tree.prim[i]]);
+    }
+    tree.nodes[t.node].box = in.box;
+    tree.depth = std::max(tree.depth, t.depth + 1);
+    const std::uint32_t count = t.end - t.begin;
+    auto make_leaf = [&] {
+      tree.nodes[t.node].first = t.begin;
+      tree.nodes[t.node].count = count;
+      tree.nodes[t.node].children = 0;
+    };
+    if (count <= 1 || t.depth >= max_build_depth || stop(in, count)) {
+      make_leaf();
+      continue;
+    }
+    std::uint32_t* idx = tree.prim.data() + t.begin;
+    Parts parts = partition(in, idx, count);
+    // Drop empty parts; fall back to a median split when the partition made no progress.
+    std::array<std::uint32_t, max_build_children + 1> bounds{};
+    int m = 0;
+    bool ok = parts.count >= 2 && parts.count <= max_build_children &&
+              parts.ends[std::size_t(parts.count - 1)] == count;
+    if (ok) {
+      std::uint32_t prev = 0;
+      for (int i = 0; i < parts.count && ok; ++i) {
+        const std::uint32_t e = parts.ends[std::size_t(i)];
+        if (e < prev || e > count) ok = false;
+        else if (e > prev) bounds[std::size_t(++m)] = e;
+        prev = e;
+      }
+      ok = ok && m >= 2;
+    }
+    if (!ok) {
+      parts = detail::median_split(in, idx, count);
+      m = 2;
+      bounds[1] = parts.ends[0];
+      bounds[2] = count;
+    }
+    const std::uint32_t first_child = std::uint32_t(tree.nodes.size());
+    tree.nodes[t.node].first = first_child;
+    tree.nodes[t.node].count = 0;
+    tree.nodes[t.node].children = std::uint32_t(m);
+    tree.nodes.resize(tree.nodes.size() + std::size_t(m));
+    // Push in reverse so children are processed (and laid out below them) in order.
+    for (int i = m - 1; i >= 0; --i)
+      todo.push_back({first_child + std::uint32_t(i), t.begin + bounds[std::size_t(i)],
+                      t.begin + bounds[std::size_t(i) + 1], t.depth + 1});
+  }
+  return tree;
+}
+
+namespace detail {
+/// Spreads the low 21 bits of `v` to every third bit.
+inline std::uint64_t spread_bits_21(std::uint64_t v) noexcept {
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffULL;
+  v = (v | v << 16) & 0x1f0000ff0000ffULL;
+  v = (v | v << 8) & 0x100f00f00f00f00fULL;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+/// Index of the highest set bit of `v` (v != 0).
+inline int highest_bit(std::uint64_t v) noexcept {
+  int b = 0;
+  while (v >>= 1) ++b;
+  return b;
+}
+} // namespace detail
+
+/// 63-bit Morton code of `p` quantised to 2^21 cells per axis of `box`.
+template <class T> std::uint64_t morton_code(const Vec3<T>& p, const Aabb<T>& box) noexcept {
+  const Vec3<T> e = box.extent();
+  std::uint64_t q[3];
+  for (int a = 0; a < 3; ++a) {
+    const T u = e[a] > T(0) ? (p[a] - box.lo[a]) / e[a] : T(0);
+    const double c = std::min(std::max(double(u) * 2097152.0, 0.0), 2097151.0);
+    q[a] = std::uint64_t(c);
+  }
+  return detail::spread_bits_21(q[0]) | detail::spread_bits_21(q[1]) << 1 |
+         detail::spread_bits_21(q[2]) << 2;
+}
+
+/// Bottom-up construction (LBVH): Morton codes of the centroids, sorted (ties by index), then a
+/// binary hierarchy split at the highest bit that differs within each range (the middle when all
+/// codes are equal); ranges of at most `max_leaf_size` primitives become leaves. O(n log n).
+template <class T>
+BuildTree<T> build_morton(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
+                          std::uint32_t max_leaf_size = 4) {
+  EBGEOM_ASSERT(boxes.size() == centroids.size());
+  const std::uint32_t n = std::uint32_t(boxes.size());
+  Aabb<T> cbox;
+  for (const auto& c : centroids) cbox.extend(c);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+  for (std::uint32_t i = 0; i < n; ++i) keys[i] = {morton_code(centroids[i], cbox), i};
+  std::sort(keys.begin(), keys.end());
+  // Split by code: a "partition" that finds the highest differing bit in a sorted range. The
+  // primitives are already in Morton order, so the partition only reports where to cut.
+  struct MortonSplit {
+    const std::vector<std::uint64_t>* codes;
+    Parts operator()(const PartitionInput<T>&, std::uint32_t* idx, std::uint32_t cnt) const {
+      const std::uint64_t a = (*codes)[idx[0]], b = (*codes)[idx[cnt - 1]];
+      Parts p;
+      p.count = 2;
+      p.ends[1] = cnt;
+      if (a == b) {
+        p.ends[0] = cnt / 2;
+        return p;
+      }
+      const int bit = detail::highest_bit(a ^ b);
+      const std::uint64_t mask = ~0ULL << bit;
+      const std::uint64_t prefix = (a & mask) | (1ULL << bit);
+      // First element whose code has the higher prefix (codes are sorted within the range).
+      std::uint32_t lo = 0, hi = cnt;
+      while (lo < hi) {
+        const std::uint32_t mid = (lo + hi) / 2;
+        if (((*codes)[idx[mid]] & mask) < prefix) lo = mid + 1;
+        else hi = mid;
+      }
+      p.ends[0] = lo;
+      return p;
+    }
+  };
+  // Start from Morton order: build_top_down begins with the identity permutation, so feed it the
+  // sorted order through permuted views and map the result back.
+  std::vector<Aabb<T>> sboxes(n);
+  std::vector<Vec3<T>> scent(n);
+  std::vector<std::uint64_t> scodes(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    sboxes[i] = boxes[keys[i].second];
+    scent[i] = centroids[keys[i].second];
+    scodes[i] = keys[i].first;
+  }
+  BuildTree<T> tree = build_top_down<T>(Span<const Aabb<T>>(sboxes), Span<const Vec3<T>>(scent),
+                                        MortonSplit{&scodes}, LeafSizeStop{max_leaf_size});
+  for (auto& p : tree.prim) p = keys[p].second;
+  return tree;
+}
+
+/// The ready-made builder: `options.method` with `LeafSizeStop{options.max_leaf_size}`.
+template <class T>
+BuildTree<T> build(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
+                   const BuildOptions& options = {}) {
+  const std::uint32_t leaf = std::max<std::uint32_t>(1, options.max_leaf_size);
+  switch (options.method) {
+  case BuildMethod::median:
+    return build_top_down<T>(boxes, centroids, MedianPartition{}, LeafSizeStop{leaf});
+  case BuildMethod::morton:
+    return build_morton<T>(boxes, centroids, leaf);
+  case BuildMethod::sah_binned:
+  default:
+    return build_top_down<T>(boxes, centroids, SahPartition{options.bins}, LeafSizeStop{leaf});
+  }
+}
+
+} // namespace ebgeom::bvh

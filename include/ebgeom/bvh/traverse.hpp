@@ -1,0 +1,265 @@
+#pragma once
+/// \file
+/// Queries over a `WideBvh`: one generic branch-and-bound nearest search shared by mesh SDFs,
+/// BVH unions, closest points and nearest neighbours, plus generic visitors for other queries.
+///
+/// - `nearest` : pruned, ordered (closest child first), stack based. The leaf callback
+///   `leaf(first, count, best2)` scans leaf slots [first, first + count) and may lower `best2`;
+///   subtrees whose box is at squared distance >= best2 are skipped. With `Shrink = true` the bound
+///   also shrinks to each child box's *farthest* distance before any leaf is reached (valid when
+///   every primitive lies inside its box and distances are measured to the primitive itself).
+///   A caller-supplied initial `best2` gives narrow-band queries.
+/// - `nearest_unordered`, `nearest_recursive` : the same search without child ordering / with
+///   recursion, kept for comparison in bench/ (the seeds list them).
+/// - `for_each_leaf_if` : visits every leaf whose path of boxes satisfies a predicate;
+///   `for_each_overlapping` (boxes overlapping a region) and `for_each_within` (boxes within a
+///   radius of a point) are built on it.
+/// - `k_nearest` : the k primitives nearest to a point, for any primitive distance.
+/// All functions are allocation-free except `k_nearest`'s result, and thread-safe on a const BVH.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "ebgeom/bvh/wide_bvh.hpp"
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
+#include "ebgeom/core/vec.hpp"
+
+namespace ebgeom::bvh {
+
+/// A subtree waiting to be visited, with the squared distance of its box.
+template <class T> struct Pending {
+  ChildRef ref;
+  T dist2;
+};
+
+/// Fixed-capacity stack on the call stack (no allocation). The capacity is proven by the builder.
+template <class E, int N> class FixedStack {
+ public:
+  void push(const E& e) noexcept {
+    EBGEOM_ASSERT(size_ < N);
+    data_[size_++] = e;
+  }
+  E pop() noexcept { return data_[--size_]; }
+  bool empty() const noexcept { return size_ == 0; }
+  int size() const noexcept { return size_; }
+
+ private:
+  E data_[N];
+  int size_ = 0;
+};
+
+/// Slack applied to a farthest-distance bound so that rounding in a primitive's own distance can
+/// never leave the true nearest primitive above the bound.
+/// Also adds the smallest normal number so a bound of exactly 0 (a point primitive at the query)
+/// still admits that primitive.
+template <class T> constexpr T shrink_bound(T far2) noexcept {
+  return far2 * (T(1) + T(64) * std::numeric_limits<T>::epsilon()) +
+         std::numeric_limits<T>::min();
+}
+
+/// Nearest-first branch and bound (see the file comment). `best2` is in/out: the initial bound and
+/// the final best squared distance the leaf callback reported.
+template <bool Shrink = false, class T, int K, class LeafFn>
+void nearest(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf) noexcept {
+  if (bvh.root.is_empty()) return;
+  if (bvh.root.is_leaf()) {
+    if (bvh.box.distance2(p) < best2) leaf(bvh.root.index, bvh.root.count, best2);
+    return;
+  }
+  FixedStack<Pending<T>, WideBvh<T, K>::stack_capacity> todo;
+  todo.push({bvh.root, T(0)});
+  while (!todo.empty()) {
+    const Pending<T> top = todo.pop();
+    if (!(top.dist2 < best2)) continue; // a closer hit arrived after this was pushed
+    if (top.ref.is_leaf()) {
+      leaf(top.ref.index, top.ref.count, best2);
+      continue;
+    }
+    const WideNode<T, K>& n = bvh.nodes[top.ref.index];
+    T d2[K];
+    child_dist2(n, p, d2);
+    if constexpr (Shrink) {
+      T far2[K];
+      child_far_dist2(n, p, far2);
+      T m = best2;
+      for (int k = 0; k < K; ++k) m = std::min(m, shrink_bound(far2[k]));
+      best2 = m;
+    }
+    // Children that can still hold a closer primitive, sorted far to near, then pushed so the
+    // nearest pops first.
+    Pending<T> c[K];
+    int m = 0;
+    for (int k = 0; k < K; ++k) {
+      if (d2[k] < best2) {
+        Pending<T> e{n.child[k], d2[k]};
+        int j = m++;
+        while (j > 0 && c[j - 1].dist2 < e.dist2) {
+          c[j] = c[j - 1];
+          --j;
+        }
+        c[j] = e;
+      }
+    }
+    for (int j = 0; j < m; ++j) todo.push(c[j]);
+  }
+}
+
+/// `nearest` without ordering: children are pushed in storage order (for comparison in bench/).
+template <class T, int K, class LeafFn>
+void nearest_unordered(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2,
+                       LeafFn&& leaf) noexcept {
+  if (bvh.root.is_empty()) return;
+  FixedStack<Pending<T>, WideBvh<T, K>::stack_capacity> todo;
+  todo.push({bvh.root, bvh.box.distance2(p)});
+  while (!todo.empty()) {
+    const Pending<T> top = todo.pop();
+    if (!(top.dist2 < best2)) continue;
+    if (top.ref.is_leaf()) {
+      leaf(top.ref.index, top.ref.count, best2);
+      continue;
+    }
+    const WideNode<T, K>& n = bvh.nodes[top.ref.index];
+    T d2[K];
+    child_dist2(n, p, d2);
+    for (int k = 0; k < K; ++k)
+      if (d2[k] < best2) todo.push({n.child[k], d2[k]});
+  }
+}
+
+namespace detail {
+template <class T, int K, class LeafFn>
+void nearest_recursive_at(const WideBvh<T, K>& bvh, const ChildRef ref, const Vec3<T>& p,
+                          T& best2, LeafFn& leaf) noexcept {
+  if (ref.is_leaf()) {
+    leaf(ref.index, ref.count, best2);
+    return;
+  }
+  const WideNode<T, K>& n = bvh.nodes[ref.index];
+  T d2[K];
+  child_dist2(n, p, d2);
+  int order[K];
+  for (int k = 0; k < K; ++k) order[k] = k;
+  std::sort(order, order + K, [&](int a, int b) { return d2[a] < d2[b]; });
+  for (int j = 0; j < K; ++j)
+    if (d2[order[j]] < best2) nearest_recursive_at(bvh, n.child[order[j]], p, best2, leaf);
+}
+} // namespace detail
+
+/// `nearest` by recursion, nearest child first (the seeds' recursive variant; for bench/).
+template <class T, int K, class LeafFn>
+void nearest_recursive(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2,
+                       LeafFn&& leaf) noexcept {
+  if (bvh.root.is_empty() || !(bvh.box.distance2(p) < best2)) return;
+  detail::nearest_recursive_at(bvh, bvh.root, p, best2, leaf);
+}
+
+/// Calls `leaf(first, count)` for every leaf all of whose ancestors' boxes, and its own, satisfy
+/// `keep(box)`. `leaf` returns false to stop the whole traversal early. Depth first.
+template <class T, int K, class KeepFn, class LeafFn>
+void for_each_leaf_if(const WideBvh<T, K>& bvh, KeepFn&& keep, LeafFn&& leaf) {
+  if (bvh.root.is_empty() || !keep(bvh.box)) return;
+  if (bvh.root.is_leaf()) {
+    leaf(bvh.root.index, bvh.root.count);
+    return;
+  }
+  FixedStack<std::uint32_t, WideBvh<T, K>::stack_capacity> todo;
+  todo.push(bvh.root.index);
+  while (!todo.empty()) {
+    const WideNode<T, K>& n = bvh.nodes[todo.pop()];
+    for (int k = K - 1; k >= 0; --k) {
+      const ChildRef r = n.child[k];
+      if (r.is_empty() || !keep(n.child_box(k))) continue;
+      if (r.is_leaf()) {
+        if (!leaf(r.index, r.count)) return;
+      } else {
+        todo.push(r.index);
+      }
+    }
+  }
+}
+
+/// Calls `fn(slot)` for every primitive slot in a leaf whose box overlaps `region` (a superset of
+/// the primitives that overlap it: test the primitive itself in `fn` when that matters).
+template <class T, int K, class Fn>
+void for_each_overlapping(const WideBvh<T, K>& bvh, const Aabb<T>& region, Fn&& fn) {
+  for_each_leaf_if(
+      bvh, [&](const Aabb<T>& b) { return b.overlaps(region); },
+      [&](std::uint32_t first, std::uint32_t count) {
+        for (std::uint32_t s = first; s < first + count; ++s) fn(s);
+        return true;
+      });
+}
+
+/// Calls `fn(slot)` for every primitive slot in a leaf whose box is within `radius` of `p`.
+template <class T, int K, class Fn>
+void for_each_within(const WideBvh<T, K>& bvh, const Vec3<T>& p, T radius, Fn&& fn) {
+  const T r2 = radius * radius;
+  for_each_leaf_if(
+      bvh, [&](const Aabb<T>& b) { return b.distance2(p) <= r2; },
+      [&](std::uint32_t first, std::uint32_t count) {
+        for (std::uint32_t s = first; s < first + count; ++s) fn(s);
+        return true;
+      });
+}
+
+/// One result of `k_nearest`: squared distance, leaf slot, and the tie-break key of that slot.
+template <class T> struct Neighbour {
+  T dist2;
+  std::uint32_t slot;
+  std::uint32_t key;
+  friend bool operator<(const Neighbour& a, const Neighbour& b) noexcept {
+    return a.dist2 < b.dist2 || (a.dist2 == b.dist2 && a.key < b.key);
+  }
+};
+
+/// Tie-break key of `k_nearest`: the slot itself.
+struct SlotKey {
+  std::uint32_t operator()(std::uint32_t slot) const noexcept { return slot; }
+};
+
+/// The `k` primitives nearest to `p` whose squared distance (`dist2(slot)`, the distance to the
+/// primitive itself, >= the distance to its box) is at most `max_dist2`, sorted by distance then
+/// by `key(slot)` (e.g. the input index). Exact: equal to sorting all primitives that way and
+/// keeping the first k.
+template <class T, int K, class Dist2Fn, class KeyFn = SlotKey>
+std::vector<Neighbour<T>> k_nearest(const WideBvh<T, K>& bvh, const Vec3<T>& p, std::size_t k,
+                                    Dist2Fn&& dist2,
+                                    T max_dist2 = std::numeric_limits<T>::infinity(),
+                                    KeyFn&& key = {}) {
+  std::vector<Neighbour<T>> heap; // max-heap on (dist2, key)
+  if (k == 0) return heap;
+  heap.reserve(k + 1);
+  T bound = max_dist2;
+  // `nearest` prunes boxes with d2 >= best2; a box at exactly the k-th distance may still hold a
+  // tie with a smaller key, so the bound handed to the traversal is nudged up one ulp.
+  T best2 = std::nextafter(bound, std::numeric_limits<T>::infinity());
+  nearest(bvh, p, best2, [&](std::uint32_t first, std::uint32_t count, T& b2) {
+    for (std::uint32_t s = first; s < first + count; ++s) {
+      const Neighbour<T> c{dist2(s), s, key(s)};
+      if (!(c.dist2 <= bound)) continue;
+      if (heap.size() < k) {
+        heap.push_back(c);
+        std::push_heap(heap.begin(), heap.end());
+      } else if (c < heap.front()) {
+        std::pop_heap(heap.begin(), heap.end());
+        heap.back() = c;
+        std::push_heap(heap.begin(), heap.end());
+      } else {
+        continue;
+      }
+      if (heap.size() == k) {
+        bound = heap.front().dist2;
+        b2 = std::nextafter(bound, std::numeric_limits<T>::infinity());
+      }
+    }
+  });
+  std::sort_heap(heap.begin(), heap.end());
+  return heap;
+}
+
+} // namespace ebgeom::bvh

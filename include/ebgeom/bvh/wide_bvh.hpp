@@ -1,0 +1,224 @@
+#pragma once
+/// \file
+/// `WideBvh<T, K>`: the compact, flattened form of a BVH that every query uses. `flatten<K>`
+/// collapses a builder tree (`bvh/build.hpp`) into K-wide nodes laid out depth first; each node
+/// stores its K child boxes structure-of-arrays, so one loop bounds all children at once.
+/// `refit` recomputes every box after primitives move (same topology).
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "ebgeom/bvh/build.hpp"
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
+#include "ebgeom/core/vec.hpp"
+
+namespace ebgeom::bvh {
+
+/// Reference to a child of a wide node: an inner node, a leaf (a range of primitive slots in leaf
+/// order), or nothing. 8 bytes.
+struct ChildRef {
+  static constexpr std::uint32_t none = ~std::uint32_t(0);
+  std::uint32_t index = none; ///< inner: node index; leaf: first primitive slot; empty: `none`
+  std::uint32_t count = 0;    ///< leaf: number of primitives (> 0); inner and empty: 0
+
+  static constexpr ChildRef inner(std::uint32_t node) noexcept { return {node, 0}; }
+  static constexpr ChildRef leaf(std::uint32_t first, std::uint32_t n) noexcept {
+    return {first, n};
+  }
+  constexpr bool is_leaf() const noexcept { return count != 0; }
+  constexpr bool is_inner() const noexcept { return count == 0 && index != none; }
+  constexpr bool is_empty() const noexcept { return count == 0 && index == none; }
+};
+
+/// K-wide node: the K child boxes as structure of arrays, then the K child references. An empty
+/// slot has an empty box (lo = +inf, hi = -inf), so its distance from any point is +inf and no
+/// traversal enters it. Size: 6·K·sizeof(T) + 8·K bytes (K = 4, float: 128 B, two cache lines).
+template <class T, int K> struct WideNode {
+  static_assert(K >= 2 && K <= 16, "WideNode<T, K> needs 2 <= K <= 16");
+  T lo_x[K], lo_y[K], lo_z[K], hi_x[K], hi_y[K], hi_z[K];
+  ChildRef child[K];
+
+  Aabb<T> child_box(int k) const noexcept {
+    return {{lo_x[k], lo_y[k], lo_z[k]}, {hi_x[k], hi_y[k], hi_z[k]}};
+  }
+  void set_child_box(int k, const Aabb<T>& b) noexcept {
+    lo_x[k] = b.lo.x, lo_y[k] = b.lo.y, lo_z[k] = b.lo.z;
+    hi_x[k] = b.hi.x, hi_y[k] = b.hi.y, hi_z[k] = b.hi.z;
+  }
+  /// Union of the child boxes.
+  Aabb<T> bounds() const noexcept {
+    Aabb<T> b;
+    for (int k = 0; k < K; ++k)
+      if (!child[k].is_empty()) b.extend(child_box(k));
+    return b;
+  }
+};
+
+/// Squared distances from `p` to the K child boxes of `n` (0 inside, +inf for empty slots).
+/// Branch-free: compiles to K-wide min/max.
+template <class T, int K>
+EBGEOM_FORCE_INLINE void child_dist2(const WideNode<T, K>& n, const Vec3<T>& p,
+                                     T (&d2)[K]) noexcept {
+  for (int k = 0; k < K; ++k) {
+    const T dx = std::max(std::max(n.lo_x[k] - p.x, p.x - n.hi_x[k]), T(0));
+    const T dy = std::max(std::max(n.lo_y[k] - p.y, p.y - n.hi_y[k]), T(0));
+    const T dz = std::max(std::max(n.lo_z[k] - p.z, p.z - n.hi_z[k]), T(0));
+    d2[k] = dx * dx + dy * dy + dz * dz;
+  }
+}
+
+/// Squared distances from `p` to the farthest point of each child box (+inf for empty slots).
+template <class T, int K>
+EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<T, K>& n, const Vec3<T>& p,
+                                         T (&d2)[K]) noexcept {
+  for (int k = 0; k < K; ++k) {
+    const T dx = std::max(p.x - n.lo_x[k], n.hi_x[k] - p.x);
+    const T dy = std::max(p.y - n.lo_y[k], n.hi_y[k] - p.y);
+    const T dz = std::max(p.z - n.lo_z[k], n.hi_z[k] - p.z);
+    d2[k] = dx * dx + dy * dy + dz * dz;
+  }
+}
+
+/// The compact BVH. `root` is an inner reference to `nodes[0]`, or a leaf when all primitives fit
+/// in one leaf, or empty for zero primitives. `prim[slot]` is the input index of the primitive in
+/// leaf slot `slot`. Immutable after construction: concurrent queries are safe.
+template <class T, int K> struct WideBvh {
+  static_assert(K >= 2 && K <= 16, "WideBvh<T, K> needs 2 <= K <= 16");
+  using scalar_type = T;
+  static constexpr int arity = K;
+  /// Deepest tree `flatten` can make (a builder tree of depth <= max_build_depth + 1 whose nodes
+  /// have up to 16 children, regrouped K at a time).
+  static constexpr int max_depth = (max_build_depth + 1) * (K >= 16 ? 1 : (K >= 4 ? 2 : 4));
+  /// Entries a nearest-first traversal stack can hold at most: (K - 1) per level, plus one.
+  static constexpr int stack_capacity = max_depth * (K - 1) + 1;
+
+  std::vector<WideNode<T, K>> nodes;
+  std::vector<std::uint32_t> prim;
+  ChildRef root;
+  Aabb<T> box; ///< bounds of everything
+  int depth = 0; ///< node levels (0 when the root is a leaf or empty)
+
+  std::size_t size() const noexcept { return prim.size(); }
+  bool empty() const noexcept { return prim.empty(); }
+  std::size_t memory_bytes() const noexcept {
+    return nodes.size() * sizeof(WideNode<T, K>) + prim.size() * sizeof(std::uint32_t);
+  }
+};
+
+namespace detail {
+template <class T, int K> struct Flattener {
+  const BuildTree<T>& tree;
+  WideBvh<T, K>& out;
+
+  ChildRef ref_of(std::uint32_t b, int level) {
+    const BuildNode<T>& n = tree.nodes[b];
+    if (n.is_leaf()) return ChildRef::leaf(n.first, n.count);
+    std::vector<std::uint32_t> kids;
+    for (std::uint32_t c = 0; c < n.children; ++c) kids.push_back(n.first + c);
+    return emit(kids, level);
+  }
+
+  /// Emits one wide node for the builder nodes `kids` (collapsing inner children with the largest
+  /// boxes while they fit, regrouping when there are more than K). Pre-order: the node's index is
+  /// smaller than its descendants'.
+  ChildRef emit(std::vector<std::uint32_t> kids, int level) {
+    for (;;) {
+      if (kids.size() >= std::size_t(K)) break;
+      int pick = -1;
+      T best_area = -std::numeric_limits<T>::infinity();
+      for (std::size_t i = 0; i < kids.size(); ++i) {
+        const BuildNode<T>& c = tree.nodes[kids[i]];
+        if (c.is_leaf() || kids.size() - 1 + c.children > std::size_t(K)) continue;
+        const T a = c.box.half_area();
+        if (a > best_area) {
+          best_area = a;
+          pick = int(i);
+        }
+      }
+      if (pick < 0) break;
+      const BuildNode<T>& c = tree.nodes[kids[std::size_t(pick)]];
+      kids.erase(kids.begin() + pick);
+      for (std::uint32_t j = 0; j < c.children; ++j)
+        kids.insert(kids.begin() + pick + std::ptrdiff_t(j), c.first + j);
+    }
+    const std::uint32_t index = std::uint32_t(out.nodes.size());
+    out.nodes.emplace_back();
+    out.depth = std::max(out.depth, level + 1);
+    {
+      WideNode<T, K>& w = out.nodes[index];
+      for (int k = 0; k < K; ++k) {
+        w.set_child_box(k, Aabb<T>());
+        w.child[k] = ChildRef{};
+      }
+    }
+    if (kids.size() <= std::size_t(K)) {
+      for (std::size_t k = 0; k < kids.size(); ++k) {
+        const ChildRef r = ref_of(kids[k], level + 1);
+        WideNode<T, K>& w = out.nodes[index]; // `out.nodes` may have grown
+        w.child[k] = r;
+        w.set_child_box(int(k), tree.nodes[kids[k]].box);
+      }
+      return ChildRef::inner(index);
+    }
+    // More than K children (a K-ary partition with more parts than K): K groups of consecutive
+    // children, each its own node.
+    for (int g = 0; g < K; ++g) {
+      const std::size_t a = kids.size() * std::size_t(g) / K, b = kids.size() * (g + 1) / K;
+      if (a == b) continue;
+      Aabb<T> box;
+      for (std::size_t i = a; i < b; ++i) box.extend(tree.nodes[kids[i]].box);
+      const ChildRef r =
+          b - a == 1
+              ? ref_of(kids[a], level + 1)
+              : emit(std::vector<std::uint32_t>(kids.begin() + std::ptrdiff_t(a),
+                                                kids.begin() + std::ptrdiff_t(b)),
+                     level + 1);
+      WideNode<T, K>& w = out.nodes[index];
+      w.child[g] = r;
+      w.set_child_box(g, box);
+    }
+    return ChildRef::inner(index);
+  }
+};
+} // namespace detail
+
+/// Collapses a builder tree into the compact K-wide form. O(nodes · K).
+template <int K, class T> WideBvh<T, K> flatten(const BuildTree<T>& tree) {
+  WideBvh<T, K> out;
+  out.prim = tree.prim;
+  if (tree.empty()) return out;
+  out.box = tree.nodes[0].box;
+  out.nodes.reserve(tree.nodes.size() / 2 + 1);
+  detail::Flattener<T, K> f{tree, out};
+  out.root = f.ref_of(0, 0);
+  EBGEOM_ASSERT((out.depth <= WideBvh<T, K>::max_depth));
+  return out;
+}
+
+/// Builds and flattens in one call.
+template <int K, class T>
+WideBvh<T, K> build_wide(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
+                         const BuildOptions& options = {}) {
+  return flatten<K>(build(boxes, centroids, options));
+}
+
+/// Recomputes every box of `bvh` after its primitives moved (same primitives, same leaves).
+/// `leaf_box(first, count)` returns the box of leaf slots [first, first + count). O(nodes · K).
+template <class T, int K, class LeafBox> void refit(WideBvh<T, K>& bvh, const LeafBox& leaf_box) {
+  // Pre-order layout: every child node has a larger index than its parent.
+  for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
+    WideNode<T, K>& n = bvh.nodes[i];
+    for (int k = 0; k < K; ++k) {
+      const ChildRef r = n.child[k];
+      if (r.is_leaf()) n.set_child_box(k, leaf_box(r.index, r.count));
+      else if (r.is_inner()) n.set_child_box(k, bvh.nodes[r.index].bounds());
+    }
+  }
+  if (bvh.root.is_leaf()) bvh.box = leaf_box(bvh.root.index, bvh.root.count);
+  else if (bvh.root.is_inner()) bvh.box = bvh.nodes[bvh.root.index].bounds();
+}
+
+} // namespace ebgeom::bvh

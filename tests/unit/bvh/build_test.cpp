@@ -1,0 +1,245 @@
+#include "ebgeom/bvh/build.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "ebgeom/bvh/wide_bvh.hpp"
+#include "test_support.hpp"
+
+using namespace ebgeom;
+using namespace ebgeom::bvh;
+
+namespace {
+/// Random small boxes (some degenerate) in [-1, 1]^3.
+template <class T> std::vector<Aabb<T>> random_boxes(std::size_t n, std::uint64_t seed = 7) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1), s(0, 0.05);
+  std::vector<Aabb<T>> b(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3<T> c{T(u(rng)), T(u(rng)), T(u(rng))};
+    const Vec3<T> h = i % 7 == 0 ? Vec3<T>::zero() : Vec3<T>{T(s(rng)), T(s(rng)), T(s(rng))};
+    b[i] = {c - h, c + h};
+  }
+  return b;
+}
+template <class T> std::vector<Vec3<T>> centers(const std::vector<Aabb<T>>& b) {
+  std::vector<Vec3<T>> c;
+  for (const auto& x : b) c.push_back(x.center());
+  return c;
+}
+
+/// Checks a builder tree: permutation, leaf coverage, boxes contain their contents, arity.
+template <class T>
+void check_tree(const BuildTree<T>& t, const std::vector<Aabb<T>>& boxes, std::uint32_t max_leaf,
+                bool exact_leaf_size) {
+  const std::size_t n = boxes.size();
+  ASSERT_EQ(t.prim.size(), n);
+  std::vector<std::uint32_t> sorted = t.prim;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(sorted[i], i);
+  std::vector<int> covered(n, 0);
+  for (const auto& node : t.nodes) {
+    if (node.is_leaf()) {
+      ASSERT_GE(node.count, 1u);
+      if (exact_leaf_size) {
+        EXPECT_LE(node.count, max_leaf);
+      }
+      for (std::uint32_t s = node.first; s < node.first + node.count; ++s) {
+        ++covered[s];
+        EXPECT_TRUE(node.box.contains(boxes[t.prim[s]]));
+      }
+    } else {
+      ASSERT_GE(node.children, 2u);
+      ASSERT_LE(node.children, std::uint32_t(max_build_children));
+      for (std::uint32_t c = node.first; c < node.first + node.children; ++c)
+        EXPECT_TRUE(node.box.contains(t.nodes[c].box));
+    }
+  }
+  for (std::size_t s = 0; s < n; ++s) EXPECT_EQ(covered[s], 1) << "slot " << s;
+  EXPECT_LE(t.depth, max_build_depth + 1);
+}
+
+/// Checks a flattened tree: every slot in exactly one leaf, child boxes contain the primitives,
+/// pre-order layout, depth within the proven stack bound.
+template <class T, int K>
+void check_wide(const WideBvh<T, K>& w, const std::vector<Aabb<T>>& boxes) {
+  const std::size_t n = boxes.size();
+  std::vector<int> covered(n, 0);
+  auto leaf = [&](const ChildRef& r, const Aabb<T>& box) {
+    for (std::uint32_t s = r.index; s < r.index + r.count; ++s) {
+      ++covered[s];
+      EXPECT_TRUE(box.contains(boxes[w.prim[s]]));
+    }
+  };
+  if (w.root.is_leaf()) leaf(w.root, w.box);
+  for (std::size_t i = 0; i < w.nodes.size(); ++i) {
+    const auto& node = w.nodes[i];
+    for (int k = 0; k < K; ++k) {
+      const ChildRef r = node.child[k];
+      if (r.is_leaf()) leaf(r, node.child_box(k));
+      if (r.is_inner()) {
+        EXPECT_GT(r.index, i); // pre-order
+        EXPECT_TRUE(node.child_box(k).contains(w.nodes[r.index].bounds()));
+      }
+      if (r.is_empty()) {
+        EXPECT_TRUE(node.child_box(k).is_empty());
+      }
+    }
+  }
+  for (std::size_t s = 0; s < n; ++s) EXPECT_EQ(covered[s], 1) << "slot " << s;
+  EXPECT_LE(w.depth, (WideBvh<T, K>::max_depth));
+}
+} // namespace
+
+template <class T> class BuildTest : public ::testing::Test {};
+TYPED_TEST_SUITE(BuildTest, test::FloatTypes);
+
+TYPED_TEST(BuildTest, EveryBuilderMakesAValidTree) {
+  using T = TypeParam;
+  for (std::size_t n : {1u, 2u, 5u, 100u, 3000u}) {
+    const auto boxes = random_boxes<T>(n);
+    const auto cent = centers(boxes);
+    const Span<const Aabb<T>> B(boxes);
+    const Span<const Vec3<T>> C(cent);
+    for (BuildMethod m : {BuildMethod::sah_binned, BuildMethod::median, BuildMethod::morton}) {
+      BuildOptions o;
+      o.method = m;
+      o.max_leaf_size = 3;
+      const auto t = build(B, C, o);
+      check_tree(t, boxes, 3, true);
+      check_wide(flatten<2>(t), boxes);
+      check_wide(flatten<4>(t), boxes);
+      check_wide(flatten<8>(t), boxes);
+    }
+    const auto chunk = build_top_down<T>(B, C, ChunkPartition<8>{}, LeafSizeStop{4});
+    check_tree(chunk, boxes, 4, true);
+    check_wide(flatten<2>(chunk), boxes); // 8-ary tree regrouped into binary nodes
+    check_wide(flatten<4>(chunk), boxes);
+    check_wide(flatten<8>(chunk), boxes);
+  }
+}
+
+TYPED_TEST(BuildTest, ChunkPartitionMakesKEqualChunksAlongTheLongestAxis) {
+  using T = TypeParam;
+  std::vector<Aabb<T>> boxes;
+  for (int i = 0; i < 64; ++i) boxes.push_back(Aabb<T>::of({T(63 - i), T(0.5), T(0)})); // x axis
+  const auto cent = centers(boxes);
+  const auto t = build_top_down<T>(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(cent),
+                                   ChunkPartition<4>{}, LeafSizeStop{4});
+  ASSERT_EQ(t.nodes[0].children, 4u);
+  for (std::uint32_t c = 0; c < 4; ++c) {
+    const auto& ch = t.nodes[t.nodes[0].first + c];
+    // chunk c holds x in [16c, 16c + 15]
+    EXPECT_EQ(ch.box.lo.x, T(16 * c));
+    EXPECT_EQ(ch.box.hi.x, T(16 * c + 15));
+  }
+  check_tree(t, boxes, 4, true);
+}
+
+TYPED_TEST(BuildTest, UserPartitionAndStopFunctionsDriveTheBuild) {
+  using T = TypeParam;
+  const auto boxes = random_boxes<T>(500);
+  const auto cent = centers(boxes);
+  int calls = 0;
+  // A ternary partition by slot order (not geometric at all) and a depth-based stop.
+  auto part = [&](const PartitionInput<T>&, std::uint32_t*, std::uint32_t n) {
+    ++calls;
+    Parts p;
+    p.count = 3;
+    p.ends[0] = n / 3;
+    p.ends[1] = 2 * n / 3;
+    p.ends[2] = n;
+    return p;
+  };
+  auto stop = [](const PartitionInput<T>& in, std::uint32_t n) { return in.depth >= 3 || n < 2; };
+  const auto t = build_top_down<T>(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(cent), part,
+                                   stop);
+  EXPECT_GT(calls, 0);
+  EXPECT_EQ(t.depth, 4);
+  EXPECT_EQ(t.nodes[0].children, 3u);
+  check_tree(t, boxes, 0, false);
+  check_wide(flatten<4>(t), boxes);
+}
+
+TYPED_TEST(BuildTest, BadPartitionsFallBackToAMedianSplit) {
+  using T = TypeParam;
+  const auto boxes = random_boxes<T>(300);
+  const auto cent = centers(boxes);
+  // Returns everything in one part, or nonsense ends: the builder must still terminate.
+  auto lazy = [](const PartitionInput<T>&, std::uint32_t*, std::uint32_t n) {
+    Parts p;
+    p.count = 1;
+    p.ends[0] = n;
+    return p;
+  };
+  auto liar = [](const PartitionInput<T>&, std::uint32_t*, std::uint32_t n) {
+    Parts p;
+    p.count = 2;
+    p.ends[0] = n + 5;
+    p.ends[1] = n;
+    return p;
+  };
+  check_tree(build_top_down<T>(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(cent), lazy,
+                               LeafSizeStop{2}),
+             boxes, 2, true);
+  check_tree(build_top_down<T>(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(cent), liar,
+                               LeafSizeStop{2}),
+             boxes, 2, true);
+}
+
+TYPED_TEST(BuildTest, DegenerateInputs) {
+  using T = TypeParam;
+  // Empty.
+  const std::vector<Aabb<T>> none;
+  const std::vector<Vec3<T>> nc;
+  const auto e = flatten<4>(build(Span<const Aabb<T>>(none), Span<const Vec3<T>>(nc)));
+  EXPECT_TRUE(e.root.is_empty());
+  EXPECT_TRUE(e.nodes.empty());
+  // All centroids equal (200,000 identical boxes): median fallback keeps the depth logarithmic.
+  const std::vector<Aabb<T>> same(200000, Aabb<T>::of({0, 0, 0}, {1, 1, 1}));
+  const auto sc = centers(same);
+  for (BuildMethod m : {BuildMethod::sah_binned, BuildMethod::median, BuildMethod::morton}) {
+    BuildOptions o;
+    o.method = m;
+    const auto t = build(Span<const Aabb<T>>(same), Span<const Vec3<T>>(sc), o);
+    EXPECT_LE(t.depth, 20);
+    const auto w = flatten<4>(t);
+    EXPECT_LE(w.depth, 20);
+    std::size_t leaves = 0, prims = 0;
+    for (const auto& n : w.nodes)
+      for (const auto& c : n.child)
+        if (c.is_leaf()) ++leaves, prims += c.count;
+    EXPECT_EQ(prims, same.size());
+    EXPECT_GT(leaves, same.size() / 4 - 1);
+  }
+}
+
+TEST(Morton, CodesInterleaveBitsAndOrderAlongTheCurve) {
+  const Aabb<double> box = Aabb<double>::of({0, 0, 0}, {1, 1, 1});
+  EXPECT_EQ(morton_code(Vec3<double>{0, 0, 0}, box), 0u);
+  const double cell = 1.0 / 2097152.0;
+  EXPECT_EQ(morton_code(Vec3<double>{cell * 1.5, 0, 0}, box), 1u);
+  EXPECT_EQ(morton_code(Vec3<double>{0, cell * 1.5, 0}, box), 2u);
+  EXPECT_EQ(morton_code(Vec3<double>{0, 0, cell * 1.5}, box), 4u);
+  EXPECT_EQ(morton_code(Vec3<double>{1, 1, 1}, box), (std::uint64_t(1) << 63) - 1);
+}
+
+TEST(Refit, BoxesFollowMovedPrimitives) {
+  auto boxes = random_boxes<double>(1000);
+  const auto cent = centers(boxes);
+  auto w = flatten<4>(build(Span<const Aabb<double>>(boxes), Span<const Vec3<double>>(cent)));
+  for (auto& b : boxes) b = {b.lo * 2.0 + Vec3<double>{3, 0, 0}, b.hi * 2.0 + Vec3<double>{3, 0, 0}};
+  refit(w, [&](std::uint32_t first, std::uint32_t count) {
+    Aabb<double> b;
+    for (std::uint32_t s = first; s < first + count; ++s) b.extend(boxes[w.prim[s]]);
+    return b;
+  });
+  check_wide(w, boxes);
+  Aabb<double> all;
+  for (const auto& b : boxes) all.extend(b);
+  EXPECT_EQ(w.box, all);
+}

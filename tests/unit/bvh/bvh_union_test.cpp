@@ -1,0 +1,120 @@
+#include "ebgeom/sdf/bvh_union.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "ebgeom/mesh/generate.hpp"
+#include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
+#include "ebgeom/sdf/mesh_sdf.hpp"
+#include "test_support.hpp"
+
+using namespace ebgeom;
+
+namespace {
+template <class T> struct Ball {
+  using scalar_type = T;
+  static constexpr SdfKind kind = SdfKind::exact;
+  Vec3<T> c;
+  T r;
+  T operator()(const Vec3<T>& p) const noexcept { return norm(p - c) - r; }
+  Aabb<T> bounds() const noexcept { return Aabb<T>::of(c).grown(r); }
+};
+/// The same ball declared as a bound: the union may not prune it.
+template <class T> struct SoftBall : Ball<T> {
+  static constexpr SdfKind kind = SdfKind::bound;
+};
+template <class T> struct Slab { // unbounded: z < h
+  using scalar_type = T;
+  static constexpr SdfKind kind = SdfKind::exact;
+  T h;
+  T operator()(const Vec3<T>& p) const noexcept { return p.z - h; }
+  Aabb<T> bounds() const noexcept { return Aabb<T>::infinite(); }
+};
+template <class T> bool same_bits(T a, T b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
+
+/// The seeds' lattice: M^3 spheres of radius r in [-1, 1]^3.
+template <class T> std::vector<Ball<T>> lattice(int M, T r) {
+  const T delta = (T(2) - T(2) * T(M) * r) / T(M + 1);
+  std::vector<Ball<T>> v;
+  for (int i = 1; i <= M; ++i)
+    for (int j = 1; j <= M; ++j)
+      for (int k = 1; k <= M; ++k)
+        v.push_back({{T(-1) + T(i) * (delta + 2 * r) - r, T(-1) + T(j) * (delta + 2 * r) - r,
+                      T(-1) + T(k) * (delta + 2 * r) - r},
+                     r});
+  return v;
+}
+} // namespace
+
+template <class T> class BvhUnionTest : public ::testing::Test {};
+TYPED_TEST_SUITE(BvhUnionTest, test::FloatTypes);
+
+TYPED_TEST(BvhUnionTest, EqualsTheLinearUnionOnTheSeedsLattice) {
+  using T = TypeParam;
+  const auto balls = lattice<T>(12, T(0.02));
+  const BvhUnion<Ball<T>> u(balls);
+  static_assert(BvhUnion<Ball<T>>::kind == SdfKind::bound);
+  static_assert(BvhUnion<Ball<T>>::prunes);
+  static_assert(is_sdf_v<BvhUnion<Ball<T>>>);
+  EXPECT_EQ(u.size(), balls.size());
+  for (const auto& p : test::random_points(Aabb<T>::of({-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2}), 3000)) {
+    T ref = std::numeric_limits<T>::infinity();
+    for (const auto& b : balls) ref = std::min(ref, b(p));
+    ASSERT_TRUE(same_bits(u(p), ref)) << p << ": " << u(p) << " vs " << ref;
+    ASSERT_TRUE(same_bits(u.linear(p), ref));
+  }
+  // Centres are inside (negative), order() maps leaf order back to the input.
+  for (std::size_t i = 0; i < u.objects().size(); ++i)
+    EXPECT_EQ(u.objects()[i].c, balls[u.order()[i]].c);
+  EXPECT_EQ(u(balls[5].c), -T(0.02));
+}
+
+TYPED_TEST(BvhUnionTest, OverlappingObjectsAndUnboundedOnes) {
+  using T = TypeParam;
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u01(-1, 1), rad(0.05, 0.6);
+  std::vector<Ball<T>> balls;
+  for (int i = 0; i < 300; ++i)
+    balls.push_back({{T(u01(rng)), T(u01(rng)), T(u01(rng))}, T(rad(rng))});
+  const BvhUnion<Ball<T>, 8> u(balls);
+  std::vector<SoftBall<T>> soft;
+  for (const auto& b : balls) soft.push_back(SoftBall<T>{b});
+  const BvhUnion<SoftBall<T>, 2> us(soft);
+  static_assert(!BvhUnion<SoftBall<T>, 2>::prunes);
+  for (const auto& p : test::random_points(Aabb<T>::of({-2, -2, -2}, {2, 2, 2}), 3000, 3)) {
+    T ref = std::numeric_limits<T>::infinity();
+    for (const auto& b : balls) ref = std::min(ref, b(p));
+    ASSERT_TRUE(same_bits(u(p), ref)) << p; // deep inside several overlapping balls too
+    ASSERT_TRUE(same_bits(us(p), ref)) << p;
+  }
+  const BvhUnion<Slab<T>> slabs(std::vector<Slab<T>>{{T(0.5)}, {T(-0.25)}});
+  EXPECT_EQ(slabs({0, 0, 1}), T(0.5));
+  EXPECT_EQ(slabs.bounds(), Aabb<T>::infinite());
+  const BvhUnion<Ball<T>> empty(std::vector<Ball<T>>{});
+  EXPECT_EQ(empty({0, 0, 0}), std::numeric_limits<T>::infinity());
+  // NaN bounds are refused by the checked constructor.
+  std::vector<Ball<T>> bad = {{{0, 0, 0}, T(1)}, {{std::numeric_limits<T>::quiet_NaN(), 0, 0}, 1}};
+  const auto r = BvhUnion<Ball<T>>::make(bad);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::non_finite);
+}
+
+TYPED_TEST(BvhUnionTest, ABvhOfMeshBvhsEqualsTheUnionOfBruteForceMeshes) {
+  using T = TypeParam;
+  std::vector<MeshSdf<T>> meshes;
+  std::vector<BruteForceMeshSdf<T>> refs;
+  for (int i = 0; i < 6; ++i) {
+    auto soup = make_icosphere<T>(2, T(0.3)).value();
+    for (auto& v : soup.vertices) v += Vec3<T>{T(0.45) * T(i), T(0.1) * T(i % 2), 0};
+    meshes.push_back(MeshSdf<T>::build(soup).value());
+    refs.push_back(BruteForceMeshSdf<T>::build(soup).value());
+  }
+  const BvhUnion<MeshSdf<T>> scene(meshes);
+  for (const auto& p : test::random_points(scene.bounds().grown(T(0.5)), 1500, 12)) {
+    T ref = std::numeric_limits<T>::infinity();
+    for (const auto& m : refs) ref = std::min(ref, m(p));
+    ASSERT_TRUE(same_bits(scene(p), ref)) << p;
+  }
+}

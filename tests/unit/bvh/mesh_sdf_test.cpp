@@ -1,0 +1,203 @@
+#include "ebgeom/sdf/mesh_sdf.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "ebgeom/mesh/generate.hpp"
+#include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
+#include "test_support.hpp"
+
+using namespace ebgeom;
+
+template <class T> class MeshSdfTest : public ::testing::Test {};
+TYPED_TEST_SUITE(MeshSdfTest, test::FloatTypes);
+
+namespace {
+template <class T> bool same_bits(T a, T b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
+
+/// A closed, non-convex test mesh: a torus (polygons of 4 corners triangulated) of a few thousand
+/// triangles.
+template <class T> PolygonSoup<T> torus() { return make_torus<T>(T(1), T(0.35), 40, 20).value(); }
+
+/// Every query point kind: uniform in the box, near the surface, on vertices and edges.
+template <class T> std::vector<Vec3<T>> probes(const TriangleMesh<T>& m, std::size_t n) {
+  const Aabb<T> box = m.bounds().grown(T(0.3));
+  auto pts = test::random_points(box, n, 17);
+  std::mt19937_64 rng(3);
+  for (std::size_t t = 0; t < m.triangle_count(); t += 37) {
+    const Vec3<T> a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
+    pts.push_back(a);                                            // on a vertex
+    pts.push_back((a + b) * T(0.5));                             // on an edge
+    pts.push_back((a + b + c) / T(3) + m.face_normals[t] * T(1e-3)); // just outside a face
+    pts.push_back((a + b + c) / T(3) - m.face_normals[t] * T(1e-3)); // just inside
+  }
+  return pts;
+}
+
+template <class T, int K, int W>
+void matches_brute_force(const PolygonSoup<T>& soup, bvh::BuildMethod method, std::size_t n) {
+  const auto ref = BruteForceMeshSdf<T>::build(soup).value();
+  bvh::BuildOptions o = MeshSdf<T, K, W>::default_build_options();
+  o.method = method;
+  const auto sdf = MeshSdf<T, K, W>::build(soup, o).value();
+  std::size_t tie_triangles = 0;
+  for (const auto& p : probes(ref.mesh(), n)) {
+    const auto a = sdf.closest(p), b = ref.closest(p);
+    ASSERT_TRUE(same_bits(a.distance, b.distance))
+        << "K=" << K << " W=" << W << " p=" << p << " bvh=" << a.distance << " ref=" << b.distance;
+    if (a.triangle != b.triangle) {
+      ++tie_triangles; // allowed only on exact ties
+      const auto cp = closest_point_triangle(p, ref.mesh().corner(a.triangle, 0),
+                                             ref.mesh().corner(a.triangle, 1),
+                                             ref.mesh().corner(a.triangle, 2));
+      EXPECT_EQ(std::sqrt(cp.distance2), std::abs(b.distance));
+    } else {
+      EXPECT_EQ(a.feature, b.feature);
+      EXPECT_EQ(a.point, b.point);
+    }
+    ASSERT_TRUE(same_bits(sdf(p), b.distance));
+  }
+  // Ties only happen on shared vertices/edges: a minority of the probes.
+  EXPECT_LT(tie_triangles, n / 2);
+}
+} // namespace
+
+TYPED_TEST(MeshSdfTest, SatisfiesTheSdfContract) {
+  using S = MeshSdf<TypeParam>;
+  static_assert(is_sdf_v<S>);
+  static_assert(S::kind == SdfKind::exact);
+  const auto s = S::build(make_cube<TypeParam>(1).value()).value();
+  EXPECT_EQ(s.bounds(), Aabb<TypeParam>::of({-1, -1, -1}, {1, 1, 1}));
+  EXPECT_GT(s.memory_bytes(), 0u);
+}
+
+TYPED_TEST(MeshSdfTest, BlockKernelEqualsTheScalarKernelBitForBit) {
+  using T = TypeParam;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto rv = [&] { return Vec3<T>{T(u(rng)), T(u(rng)), T(u(rng))}; };
+  for (int round = 0; round < 2000; ++round) {
+    TriBlock<T, 8> blk;
+    Vec3<T> v[8][3];
+    for (int l = 0; l < 8; ++l) {
+      v[l][0] = rv(), v[l][1] = rv(), v[l][2] = rv();
+      if (l == 1) v[l][1] = v[l][0];                                     // repeated vertex
+      if (l == 2) v[l][2] = v[l][1] = v[l][0];                           // a point
+      if (l == 3) v[l][2] = v[l][0] + (v[l][1] - v[l][0]) * T(0.25);     // collinear
+      if (l == 4) v[l][2] = v[l][0] + (v[l][1] - v[l][0]) * T(1e-7) + rv() * T(1e-7); // sliver
+      blk.set(l, v[l][0], v[l][1], v[l][2]);
+    }
+    const Vec3<T> p = round % 5 == 0 ? v[round % 8][0] : rv() * T(2);
+    T d2[8];
+    block_distance2(blk, p, d2);
+    for (int l = 0; l < 8; ++l) {
+      const auto ref = closest_point_triangle(p, v[l][0], v[l][1], v[l][2]);
+      ASSERT_TRUE(same_bits(d2[l], ref.distance2))
+          << "lane " << l << ": " << d2[l] << " vs " << ref.distance2;
+    }
+  }
+}
+
+TYPED_TEST(MeshSdfTest, EqualsBruteForceForEveryArityBuilderAndBlockWidth) {
+  using T = TypeParam;
+  const auto soup = torus<T>();
+  for (auto m : {bvh::BuildMethod::sah_binned, bvh::BuildMethod::median, bvh::BuildMethod::morton}) {
+    matches_brute_force<T, 2, 4>(soup, m, 1500);
+    matches_brute_force<T, 4, 8>(soup, m, 1500);
+    matches_brute_force<T, 8, 8>(soup, m, 1500);
+    matches_brute_force<T, 4, 1>(soup, m, 500);
+  }
+  matches_brute_force<T, 4, 8>(make_icosphere<T>(3, T(0.7)).value(),
+                               bvh::BuildMethod::sah_binned, 2000);
+  matches_brute_force<T, 4, 8>(make_cube<T>(T(1)).value(), bvh::BuildMethod::sah_binned, 2000);
+}
+
+TYPED_TEST(MeshSdfTest, ClosestWithinIsANarrowBand) {
+  using T = TypeParam;
+  const auto sdf = MeshSdf<T>::build(torus<T>()).value();
+  const auto ref = BruteForceMeshSdf<T>::build(torus<T>()).value();
+  for (const auto& p : test::random_points(sdf.bounds().grown(T(0.5)), 2000, 23)) {
+    const T d = ref(p);
+    const auto c = sdf.closest_within(p, T(0.1));
+    if (std::abs(d) <= T(0.099)) {
+      EXPECT_TRUE(same_bits(c.distance, d)) << p;
+    } else if (std::abs(d) > T(0.101)) {
+      EXPECT_EQ(c.triangle, MeshClosestPoint<T>::invalid_triangle) << p;
+      EXPECT_EQ(c.distance, std::numeric_limits<T>::infinity());
+    }
+    EXPECT_EQ(sdf.unsigned_distance(p), std::abs(d));
+  }
+  EXPECT_EQ(sdf.closest_within({0, 0, 0}, T(-1)).triangle, MeshClosestPoint<T>::invalid_triangle);
+}
+
+TYPED_TEST(MeshSdfTest, DegenerateMeshes) {
+  using T = TypeParam;
+  auto tri_soup = [](std::vector<Vec3<T>> v, std::vector<Index> idx) {
+    PolygonSoup<T> s;
+    s.vertices = std::move(v);
+    s.offsets.clear();
+    s.offsets.push_back(0);
+    for (std::size_t i = 0; i < idx.size(); i += 3) s.offsets.push_back(Index(i + 3));
+    s.indices = std::move(idx);
+    return s;
+  };
+  // One triangle; duplicate triangles; zero-area triangles.
+  const std::vector<Vec3<T>> v = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 2, 2}, {3, 3, 3}};
+  for (const auto& idx : std::vector<std::vector<Index>>{
+           {0, 1, 2}, {0, 1, 2, 0, 1, 2, 0, 1, 2}, {0, 1, 2, 3, 4, 3}, {3, 4, 3, 3, 3, 3}}) {
+    const auto soup = tri_soup(v, idx);
+    const auto ref = BruteForceMeshSdf<T>::build(soup).value();
+    const auto sdf = MeshSdf<T>::build(soup).value();
+    for (const auto& p : test::random_points(Aabb<T>::of({-1, -1, -1}, {4, 4, 4}), 300, 2))
+      EXPECT_TRUE(same_bits(sdf(p), ref(p))) << p;
+    for (const auto& q : v) EXPECT_TRUE(same_bits(sdf(q), ref(q))) << q;
+  }
+  // 10^6 copies of one triangle: no stack overflow, logarithmic depth, exact answers.
+  std::vector<Index> many;
+  for (int i = 0; i < 1000000; ++i) many.insert(many.end(), {0, 1, 2});
+  const auto big = MeshSdf<T>::build(tri_soup(v, many)).value();
+  EXPECT_LE(big.tree().depth, 30);
+  const auto one = BruteForceMeshSdf<T>::build(tri_soup(v, {0, 1, 2})).value();
+  for (const auto& p : test::random_points(Aabb<T>::of({-1, -1, -1}, {2, 2, 2}), 50, 4))
+    EXPECT_TRUE(same_bits(big(p), one(p))) << p;
+}
+
+TYPED_TEST(MeshSdfTest, RejectsBadMeshesBeforeTheBuild) {
+  using T = TypeParam;
+  auto m = make_triangle_mesh(make_cube<T>(1).value()).value();
+  auto nan = m;
+  nan.vertices[3].y = std::numeric_limits<T>::quiet_NaN();
+  auto r = MeshSdf<T>::make(nan);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::non_finite);
+  EXPECT_NE(r.error().what().find("vertex 3"), std::string::npos) << r.error().what();
+  auto bad = m;
+  bad.triangles[2][1] = 99;
+  EXPECT_EQ(MeshSdf<T>::make(bad).error().code, ErrorCode::bad_index);
+  EXPECT_EQ(MeshSdf<T>::make(TriangleMesh<T>{}).error().code, ErrorCode::empty);
+  PolygonSoup<T> nan_soup = make_cube<T>(1).value();
+  nan_soup.vertices[0].x = std::numeric_limits<T>::infinity();
+  EXPECT_EQ(MeshSdf<T>::build(nan_soup).error().code, ErrorCode::non_finite);
+}
+
+TYPED_TEST(MeshSdfTest, RefitAfterVerticesMoveEqualsARebuild) {
+  using T = TypeParam;
+  auto soup = torus<T>();
+  auto sdf = MeshSdf<T>::build(soup).value();
+  // Twist and stretch the torus.
+  for (auto& v : soup.vertices) {
+    const T a = T(0.4) * v.z;
+    v = {v.x * std::cos(a) - v.y * std::sin(a), (v.x * std::sin(a) + v.y * std::cos(a)) * T(1.5),
+         v.z + T(0.2) * v.x};
+  }
+  ASSERT_EQ(sdf.refit(soup).code, ErrorCode::ok);
+  const auto ref = BruteForceMeshSdf<T>::build(soup).value();
+  EXPECT_EQ(sdf.bounds(), ref.bounds());
+  for (const auto& p : probes(ref.mesh(), 1000))
+    ASSERT_TRUE(same_bits(sdf(p), ref(p))) << p;
+  // Different faces are refused.
+  EXPECT_EQ(sdf.refit(make_cube<T>(1).value()).code, ErrorCode::invalid_argument);
+}

@@ -1,0 +1,149 @@
+#include "ebgeom/bvh/traverse.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "ebgeom/bvh/point_cloud.hpp"
+#include "test_support.hpp"
+
+using namespace ebgeom;
+using namespace ebgeom::bvh;
+
+template <class T> class TraverseTest : public ::testing::Test {};
+TYPED_TEST_SUITE(TraverseTest, test::FloatTypes);
+
+namespace {
+template <class T> std::vector<Vec3<T>> cloud(std::size_t n, std::uint64_t seed) {
+  auto p = test::random_points(Aabb<T>::of({-1, -1, -1}, {1, 1, 1}), n, seed);
+  // Clusters and exact duplicates make ties.
+  for (std::size_t i = 0; i + 10 < n; i += 10) p[i + 1] = p[i];
+  return p;
+}
+
+/// Nearest over a cloud with every traversal variant; all must equal brute force.
+template <class T, int K> void nearest_variants_match(BuildMethod m) {
+  const auto pts = cloud<T>(2000, 3);
+  std::vector<Aabb<T>> boxes;
+  for (const auto& p : pts) boxes.push_back(Aabb<T>::of(p));
+  BuildOptions o;
+  o.method = m;
+  const auto w = flatten<K>(build(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(pts), o));
+  for (const auto& q : test::random_points(Aabb<T>::of({-2, -2, -2}, {2, 2, 2}), 300, 9)) {
+    const auto ref = brute_force_nearest(Span<const Vec3<T>>(pts), q);
+    auto run = [&](auto&& search) {
+      T best2 = std::numeric_limits<T>::infinity();
+      std::uint32_t best = ~0u;
+      search(w, q, best2, [&](std::uint32_t first, std::uint32_t count, T& b2) {
+        for (std::uint32_t s = first; s < first + count; ++s) {
+          const T d2 = norm2(pts[w.prim[s]] - q);
+          if (d2 < b2) b2 = d2, best = w.prim[s];
+        }
+      });
+      EXPECT_EQ(best2, ref.dist2);
+      EXPECT_EQ(norm2(pts[best] - q), ref.dist2);
+    };
+    run([](auto&&... a) { nearest(a...); });
+    run([](auto&&... a) { nearest<true>(a...); });
+    run([](auto&&... a) { nearest_unordered(a...); });
+    run([](auto&&... a) { nearest_recursive(a...); });
+  }
+}
+} // namespace
+
+TYPED_TEST(TraverseTest, NearestVariantsEqualBruteForce) {
+  for (BuildMethod m : {BuildMethod::sah_binned, BuildMethod::median, BuildMethod::morton}) {
+    nearest_variants_match<TypeParam, 2>(m);
+    nearest_variants_match<TypeParam, 4>(m);
+    nearest_variants_match<TypeParam, 8>(m);
+  }
+}
+
+TYPED_TEST(TraverseTest, PointCloudNearestKNearestAndRadius) {
+  using T = TypeParam;
+  const auto pts = cloud<T>(3000, 5);
+  const PointCloud<T, 4> pc(pts);
+  const PointCloud<T, 8> pc8(pts, 1);
+  for (const auto& q : test::random_points(Aabb<T>::of({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5}), 200,
+                                           11)) {
+    const auto ref = brute_force_nearest(Span<const Vec3<T>>(pts), q);
+    const auto got = pc.nearest(q);
+    EXPECT_EQ(got.index, ref.index);
+    EXPECT_EQ(got.dist2, ref.dist2);
+    EXPECT_EQ(pc8.nearest(q).index, ref.index);
+    for (std::size_t k : {1u, 2u, 7u, 40u}) {
+      const auto rk = brute_force_k_nearest(Span<const Vec3<T>>(pts), q, k);
+      const auto gk = pc.k_nearest(q, k);
+      ASSERT_EQ(gk.size(), rk.size());
+      for (std::size_t i = 0; i < k; ++i) {
+        EXPECT_EQ(gk[i].index, rk[i].index) << "k=" << k << " i=" << i;
+        EXPECT_EQ(gk[i].dist2, rk[i].dist2);
+      }
+    }
+    const T r = T(0.2);
+    std::vector<std::uint32_t> rr;
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      if (norm2(pts[i] - q) <= r * r) rr.push_back(std::uint32_t(i));
+    EXPECT_EQ(pc.within(q, r), rr);
+  }
+  // Bounded nearest: nothing within a tiny radius of a far point.
+  EXPECT_EQ(pc.nearest({10, 10, 10}, T(1)).index, PointHit<T>::none);
+  // More neighbours asked than points exist.
+  EXPECT_EQ(pc.k_nearest({0, 0, 0}, 5000).size(), pts.size());
+}
+
+TYPED_TEST(TraverseTest, PointCloudIgnoresNonFinitePoints) {
+  using T = TypeParam;
+  std::vector<Vec3<T>> pts = {{0, 0, 0}, {std::numeric_limits<T>::quiet_NaN(), 0, 0}, {1, 0, 0}};
+  pts.push_back({std::numeric_limits<T>::infinity(), 0, 0});
+  const PointCloud<T> pc(pts);
+  EXPECT_EQ(pc.nearest({T(0.9), 0, 0}).index, 2u);
+  const auto k = pc.k_nearest({5, 0, 0}, 4);
+  ASSERT_EQ(k.size(), 2u);
+  EXPECT_EQ(k[0].index, 2u);
+  EXPECT_EQ(k[1].index, 0u);
+}
+
+TYPED_TEST(TraverseTest, OverlapAndRadiusVisitorsFindEveryCandidate) {
+  using T = TypeParam;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1), s(0, 0.1);
+  std::vector<Aabb<T>> boxes;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3<T> c{T(u(rng)), T(u(rng)), T(u(rng))};
+    const Vec3<T> h{T(s(rng)), T(s(rng)), T(s(rng))};
+    boxes.push_back({c - h, c + h});
+  }
+  std::vector<Vec3<T>> cent;
+  for (const auto& b : boxes) cent.push_back(b.center());
+  const auto w =
+      flatten<4>(build(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(cent), BuildOptions{}));
+  for (int q = 0; q < 50; ++q) {
+    const Vec3<T> c{T(u(rng)), T(u(rng)), T(u(rng))};
+    const Aabb<T> region{c - Vec3<T>::constant(T(0.2)), c + Vec3<T>::constant(T(0.3))};
+    std::vector<std::uint32_t> got, ref;
+    for_each_overlapping(w, region, [&](std::uint32_t slot) {
+      if (boxes[w.prim[slot]].overlaps(region)) got.push_back(w.prim[slot]);
+    });
+    for (std::uint32_t i = 0; i < boxes.size(); ++i)
+      if (boxes[i].overlaps(region)) ref.push_back(i);
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, ref);
+    got.clear(), ref.clear();
+    for_each_within(w, c, T(0.25), [&](std::uint32_t slot) {
+      if (boxes[w.prim[slot]].distance2(c) <= T(0.25) * T(0.25)) got.push_back(w.prim[slot]);
+    });
+    for (std::uint32_t i = 0; i < boxes.size(); ++i)
+      if (boxes[i].distance2(c) <= T(0.25) * T(0.25)) ref.push_back(i);
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, ref);
+  }
+  // Early stop: the visitor returns false at the first leaf.
+  int leaves = 0;
+  for_each_leaf_if(
+      w, [](const Aabb<T>&) { return true; },
+      [&](std::uint32_t, std::uint32_t) { return ++leaves < 1; });
+  EXPECT_EQ(leaves, 1);
+}
