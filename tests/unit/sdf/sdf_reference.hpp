@@ -1,0 +1,183 @@
+#pragma once
+// Independent references for the sdf tests: signed distances computed without the library's
+// formulas (support functions of convex bodies maximised numerically, sampled curves refined by
+// golden-section search), and a finite-difference Eikonal check.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/sdf/concepts.hpp"
+#include "test_support.hpp"
+
+namespace ebgeom::test {
+
+using V3 = Vec3<double>;
+
+/// Signed distance of a convex body K from its support function h(u) = max_{x in K} u.x:
+/// S(p) = max_{|u| = 1} (p.u - h(u)) (outside: distance to K; inside: minus the distance to the
+/// boundary). The maximum is found by a Fibonacci sphere scan and a shrinking local grid search
+/// in the tangent plane, which also converges onto kinks and ridges of h.
+inline double convex_sdf(const std::function<double(const V3&)>& h, const V3& p,
+                         const std::vector<V3>& extra = {}) {
+  static const std::vector<V3> dirs = [] {
+    std::vector<V3> d;
+    const int n = 3000;
+    const double ga = M_PI * (3 - std::sqrt(5.0));
+    for (int i = 0; i < n; ++i) {
+      const double z = 1 - 2 * (i + 0.5) / n, r = std::sqrt(1 - z * z);
+      d.push_back({r * std::cos(ga * i), r * std::sin(ga * i), z});
+    }
+    for (int a = 0; a < 3; ++a) {
+      d.push_back(V3::unit(a));
+      d.push_back(-V3::unit(a));
+    }
+    return d;
+  }();
+  const auto f = [&](const V3& u) { return dot(p, u) - h(u); };
+  V3 best = dirs[0];
+  double fb = f(best);
+  const auto consider = [&](const V3& u) {
+    const double v = f(u);
+    if (v > fb) fb = v, best = u;
+  };
+  for (const auto& u : dirs) consider(u);
+  for (const auto& u : extra) consider(normalized(u));
+  for (double s = 0.05; s > 1e-11; s *= 0.5) {
+    for (int it = 0; it < 8; ++it) { // recentre a few times at this scale
+      const V3 a = std::abs(best.x) < 0.9 ? V3{1, 0, 0} : V3{0, 1, 0};
+      const V3 t1 = normalized(cross(best, a)), t2 = cross(best, t1);
+      const V3 centre = best;
+      for (int i = -3; i <= 3; ++i)
+        for (int j = -3; j <= 3; ++j) consider(normalized(centre + t1 * (s * i) + t2 * (s * j)));
+      if (best == centre) break;
+    }
+  }
+  return fb;
+}
+
+/// Minimises f over [lo, hi] by golden-section search (f unimodal there).
+inline double golden_min(const std::function<double(double)>& f, double lo, double hi) {
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double a = lo, b = hi, c = b - g * (b - a), d = a + g * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int i = 0; i < 100; ++i) {
+    if (fc < fd) {
+      b = d, d = c, fd = fc, c = b - g * (b - a), fc = f(c);
+    } else {
+      a = c, c = d, fc = fd, d = a + g * (b - a), fd = f(d);
+    }
+  }
+  return std::min({f(a), f(b), fc, fd});
+}
+
+/// min over t in [lo, hi] of f(t): dense scan, then golden-section refinement around the best.
+inline double curve_min(const std::function<double(double)>& f, double lo, double hi,
+                        int n = 4000) {
+  int bi = 0;
+  double bv = f(lo);
+  for (int i = 1; i <= n; ++i) {
+    const double v = f(lo + (hi - lo) * i / n);
+    if (v < bv) bv = v, bi = i;
+  }
+  const double step = (hi - lo) / n;
+  const double a = std::max(lo, lo + step * (bi - 1)), b = std::min(hi, lo + step * (bi + 1));
+  return std::min(bv, golden_min(f, a, b));
+}
+
+/// Signed distance to a convex 2D polygon (vertices counter-clockwise): outside, the distance to
+/// the nearest edge segment; inside, minus the distance to the nearest edge line.
+inline double convex_polygon_sdf(const Vec2<double>& q, const std::vector<Vec2<double>>& v) {
+  double out = 1e300, in = 1e300;
+  bool inside = true;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec2<double> a = v[i], b = v[(i + 1) % v.size()], e = b - a;
+    const double l = norm(e);
+    const double side = cross(e, q - a) / l; // > 0 left of the edge (inside for CCW)
+    inside = inside && side >= 0;
+    in = std::min(in, side);
+    const double t = std::clamp(dot(q - a, e) / (l * l), 0.0, 1.0);
+    out = std::min(out, norm(q - (a + e * t)));
+  }
+  return inside ? -in : out;
+}
+
+/// Signed distance to a convex polytope given by its faces (vertex loops, counter-clockwise seen
+/// from outside): outside, the distance to the nearest face polygon (plane distance when the
+/// projection falls in the face, else the nearest edge); inside, minus the nearest plane.
+inline double convex_polytope_sdf(const V3& p, const std::vector<std::vector<V3>>& faces) {
+  double out = 1e300, in = -1e300;
+  for (const auto& f : faces) {
+    const V3 n = normalized(cross(f[1] - f[0], f[2] - f[0]));
+    const double d = dot(p - f[0], n);
+    in = std::max(in, d);
+    const V3 q = p - n * d;
+    bool in_face = true;
+    double edge = 1e300;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      const V3 a = f[i], b = f[(i + 1) % f.size()], e = b - a;
+      in_face = in_face && dot(cross(e, q - a), n) >= 0;
+      const double t = std::clamp(dot(p - a, e) / dot(e, e), 0.0, 1.0);
+      edge = std::min(edge, norm(p - (a + e * t)));
+    }
+    out = std::min(out, in_face ? std::abs(d) : edge);
+  }
+  return in <= 0 ? in : out;
+}
+
+/// Meridian coordinates of `p` for the axis a -> b, computed with the cross product:
+/// (radial distance, axial coordinate from a).
+inline Vec2<double> meridian(const V3& p, const V3& a, const V3& b) {
+  const V3 w = normalized(b - a);
+  return {norm(cross(p - a, w)), dot(p - a, w)};
+}
+
+/// Tolerance for comparing a T evaluation with a double reference at points of size ~`scale`.
+template <class T> double ref_tol(double scale = 4) {
+  return sizeof(T) == 4 ? 4e-6 * scale + 1e-5 : 1e-7;
+}
+
+/// Finite-difference gradient of `s` in double steps around the T point `p`.
+template <class S> V3 fd_gradient(const S& s, const Vec3<sdf_scalar_t<S>>& p, double h) {
+  using T = sdf_scalar_t<S>;
+  V3 g;
+  for (int a = 0; a < 3; ++a) {
+    Vec3<T> lo = p, hi = p;
+    lo[a] -= T(h);
+    hi[a] += T(h);
+    g[a] = (double(s(hi)) - double(s(lo))) / double(hi[a] - lo[a]);
+  }
+  return g;
+}
+
+/// Eikonal check: |grad S| = 1 at random points of `box`, skipping points whose second
+/// differences show a kink within the stencil (the medial axis). Requires at least `min_frac`
+/// of the points to be checked, so the test cannot pass vacuously.
+template <class S>
+void expect_eikonal(const S& s, const Aabb<sdf_scalar_t<S>>& box, std::size_t n = 400,
+                    double min_frac = 0.5, std::uint64_t seed = 17) {
+  using T = sdf_scalar_t<S>;
+  const double h = sizeof(T) == 4 ? 2e-3 : 1e-5;
+  const double tol = sizeof(T) == 4 ? 2e-2 : 1e-4;
+  std::size_t checked = 0;
+  for (const auto& p : random_points(box, n, seed)) {
+    const double s0 = double(s(p));
+    bool kink = false;
+    for (int a = 0; a < 3 && !kink; ++a) {
+      Vec3<T> lo = p, hi = p;
+      lo[a] -= T(h);
+      hi[a] += T(h);
+      const double second = double(s(hi)) + double(s(lo)) - 2 * s0;
+      kink = std::abs(second) > 0.02 * h + (sizeof(T) == 4 ? 1e-5 : 0);
+    }
+    if (kink) continue;
+    ++checked;
+    EXPECT_NEAR(norm(fd_gradient(s, p, h)), 1.0, tol) << "at " << p << " value " << s0;
+  }
+  EXPECT_GE(double(checked), min_frac * double(n)) << "too few points away from kinks";
+}
+
+} // namespace ebgeom::test
