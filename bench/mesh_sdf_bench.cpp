@@ -5,7 +5,7 @@
 //   cmake --preset bench && cmake --build --preset bench --target ebgeom_bench_mesh_sdf_bench
 //   build/bench/bench/ebgeom_bench_mesh_sdf_bench MESH | --generate N
 //       [--points N=1000000] [--reps R=5] [--precision float|double|both] [--threads T=2]
-//       [--check M=20000] [--json]
+//       [--check M=20000] [--cgal-points K=100000] [--json] [--json-file PATH]
 //
 // For the mesh: parse time (io::read_mesh) or generation time, TriangleMesh build time. For each
 // method: build time, memory, and query throughput (median of R runs) over N uniform random points
@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <malloc.h>
 #include <memory>
@@ -81,6 +82,7 @@ struct Options {
   std::size_t cgal_points = 100000; // CGAL is timed on the first K points (it is slow)
   bool run_float = false, run_double = true;
   bool json = false;
+  std::string json_file; // also write the JSON object there (text still goes to stdout)
 };
 
 // One method at one precision.
@@ -162,34 +164,32 @@ template <class T> std::vector<Vec3<T>> random_points(const Aabb<T>& box, std::s
 
 // ---- measurement ----------------------------------------------------------------------------
 
-// Runs `query` over the first `n` points R times on one thread, then R times on T threads; stores
-// queries/s per run and the outputs (identical in every run).
+// One timed pass of a method: answers its first `n` points on `threads` threads (1: a plain loop;
+// more: ebgeom::parallel_for with dynamic chunks) into `out`, and returns the seconds taken.
+using Pass = std::function<double(int threads)>;
+
 template <class T, class Query>
-void measure(Row& row, const Query& query, const std::vector<Vec3<T>>& pts, std::size_t n,
-             const Options& o, std::vector<T>& out) {
-  row.queries = n;
+Pass make_pass(Query query, const std::vector<Vec3<T>>& pts, std::size_t n, std::vector<T>& out) {
   out.assign(n, T(0));
-  for (int r = 0; r < o.reps; ++r) {
+  return [query, &pts, n, &out](int threads) {
     const auto t0 = Clock::now();
-    for (std::size_t i = 0; i < n; ++i) out[i] = query(pts[i]);
-    row.qps1.push_back(double(n) / (ms_since(t0) * 1e-3));
-  }
-  if (o.threads <= 1) return;
-  ExecOptions ex;
-  ex.threads = o.threads;
-  ex.serial_threshold = 0;
-  const std::size_t grain =
-      std::clamp<std::size_t>(n / (64 * std::size_t(o.threads)), std::size_t(16), 1024);
-  for (int r = 0; r < o.reps; ++r) {
-    const auto t0 = Clock::now();
-    parallel_for(
-        0, n, grain,
-        [&](std::size_t b, std::size_t e) {
-          for (std::size_t i = b; i < e; ++i) out[i] = query(pts[i]);
-        },
-        ex);
-    row.qpst.push_back(double(n) / (ms_since(t0) * 1e-3));
-  }
+    if (threads <= 1) {
+      for (std::size_t i = 0; i < n; ++i) out[i] = query(pts[i]);
+    } else {
+      ExecOptions ex;
+      ex.threads = threads;
+      ex.serial_threshold = 0;
+      const std::size_t grain =
+          std::clamp<std::size_t>(n / (64 * std::size_t(threads)), std::size_t(16), 1024);
+      parallel_for(
+          0, n, grain,
+          [&](std::size_t b, std::size_t e) {
+            for (std::size_t i = b; i < e; ++i) out[i] = query(pts[i]);
+          },
+          ex);
+    }
+    return ms_since(t0) * 1e-3;
+  };
 }
 
 // Compares `got` with `ref` on the first `m` values: |distance| within rel |ref| + floor, sign.
@@ -354,17 +354,20 @@ template <class T> PrecisionRun run_precision(const Options& o) {
   const double floor_f = 16 * double(std::numeric_limits<float>::epsilon()) * run.mesh.scale;
   const std::size_t nt = std::max<std::size_t>(mesh.triangle_count(), 1);
 
-  std::vector<T> ref;
+  // Every method is built first; then the timed passes are interleaved (run r of every method,
+  // then run r + 1), so that load from other processes hits all methods alike.
+  std::vector<Pass> passes;
+  std::vector<std::vector<T>> outs(4); // one per method; never resized below (passes hold refs)
+  std::vector<T>* out_ref = nullptr;   // the reference's output (ebgeom when built in)
   std::string ref_name;
 
 #ifdef EBGEOM_BENCH_HAVE_MESH_SDF
-  std::vector<T> out_ebgeom;
+  std::unique_ptr<MeshSdf<T>> sdf;
   {
     Row row;
     row.method = "ebgeom";
     row.precision = row.compute = type_name<T>();
     std::vector<double> builds;
-    std::unique_ptr<MeshSdf<T>> sdf;
     for (int r = 0; r < o.reps; ++r) {
       sdf.reset();
       TriangleMesh<T> copy = mesh; // MeshSdf owns its mesh; the copy is not the build
@@ -379,93 +382,91 @@ template <class T> PrecisionRun run_precision(const Options& o) {
     }
     row.build_ms = median(builds);
     row.memory = sdf->memory_bytes();
-    row.memory_note = "MeshSdf::memory_bytes() (BVH + triangle data)";
-    const MeshSdf<T>& s = *sdf;
-    measure(
-        row, [&](const Vec3<T>& p) { return s(p); }, pts, o.points, o, out_ebgeom);
+    row.memory_note = "MeshSdf::memory_bytes() (BVH + blocks + its TriangleMesh)";
+    row.queries = o.points;
     row.is_reference = true;
+    const MeshSdf<T>* s = sdf.get();
+    passes.push_back(make_pass([s](const Vec3<T>& p) { return (*s)(p); }, pts, o.points, outs[0]));
     run.rows.push_back(std::move(row));
-    ref = out_ebgeom;
+    out_ref = &outs[0];
     ref_name = "ebgeom";
   }
 #endif
 
   // Brute force: the exact oracle (O(n) per query), on a subset sized to the mesh.
+  t0 = Clock::now();
+  const BruteForceMeshSdf<T> brute(mesh);
+  std::vector<T> brute_ref;
   {
     Row row;
     row.method = "brute";
     row.precision = row.compute = type_name<T>();
-    t0 = Clock::now();
-    const BruteForceMeshSdf<T> brute(mesh);
     row.build_ms = ms_since(t0);
     row.memory = brute.mesh().memory_bytes();
     row.memory_note = "TriangleMesh::memory_bytes() (its copy of the mesh)";
-    const std::size_t nb = std::min<std::size_t>(
+    row.queries = std::min<std::size_t>(
         o.points, std::clamp<std::size_t>(std::size_t(4e8) / nt, std::size_t(50), 2000));
-    std::vector<T> out;
-    measure(
-        row, [&](const Vec3<T>& p) { return brute(p); }, pts, nb, o, out);
-    row.note = "on the first " + std::to_string(nb) + " points";
-    if (ref.empty()) {
+    row.note = "on the first " + std::to_string(row.queries) + " points";
+    const BruteForceMeshSdf<T>* b = &brute;
+    passes.push_back(
+        make_pass([b](const Vec3<T>& p) { return (*b)(p); }, pts, row.queries, outs[1]));
+    if (!out_ref) {
       // No MeshSdf: brute force is the reference, on as many check points as affordable.
       const std::size_t mr =
-          std::min<std::size_t>(m, std::max<std::size_t>(nb, std::size_t(5e9) / nt));
-      ref.assign(mr, T(0));
+          std::min<std::size_t>(m, std::max<std::size_t>(row.queries, std::size_t(5e9) / nt));
+      brute_ref.assign(mr, T(0));
       ExecOptions ex;
       ex.threads = o.threads;
       parallel_for(
           0, mr, 64,
-          [&](std::size_t b, std::size_t e) {
-            for (std::size_t i = b; i < e; ++i) ref[i] = brute(pts[i]);
+          [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t i = i0; i < i1; ++i) brute_ref[i] = brute(pts[i]);
           },
           ex);
+      out_ref = &brute_ref;
       ref_name = "brute";
       row.is_reference = true;
-    } else {
-      check(row, ref_name, ref, out, nb, rel_t, floor_t);
     }
     run.rows.push_back(std::move(row));
   }
 
 #ifdef EBGEOM_BENCH_HAVE_EMBREE
+  std::atomic<long long> device_bytes{0};
+  RTCDevice device = rtcNewDevice(nullptr);
+  rtcSetDeviceMemoryMonitorFunction(device, &embree_memory_monitor, &device_bytes);
+  std::unique_ptr<EmbreePeer<T>> embree;
   {
     Row row;
     row.method = "embree";
     row.precision = type_name<T>();
     row.compute = sizeof(T) == 4 ? "float" : "float BVH; double distance on the winner";
-    std::atomic<long long> device_bytes{0};
-    RTCDevice device = rtcNewDevice(nullptr);
-    rtcSetDeviceMemoryMonitorFunction(device, &embree_memory_monitor, &device_bytes);
     std::vector<double> builds;
-    std::unique_ptr<EmbreePeer<T>> peer;
     long long bvh_bytes = 0;
     for (int r = 0; r < o.reps; ++r) {
-      peer.reset();
+      embree.reset();
       const long long before = device_bytes.load();
       t0 = Clock::now();
-      peer = std::make_unique<EmbreePeer<T>>(device, mesh);
+      embree = std::make_unique<EmbreePeer<T>>(device, mesh);
       builds.push_back(ms_since(t0));
       bvh_bytes = device_bytes.load() - before;
     }
     row.build_ms = median(builds);
-    row.memory = std::size_t(std::max(0LL, bvh_bytes)) + peer->buffer_bytes() + mesh.memory_bytes();
+    row.memory =
+        std::size_t(std::max(0LL, bvh_bytes)) + embree->buffer_bytes() + mesh.memory_bytes();
     row.memory_note = "Embree device allocations " + std::to_string(bvh_bytes) +
-                      " + float vertex/index buffers " + std::to_string(peer->buffer_bytes()) +
+                      " + float vertex/index buffers " + std::to_string(embree->buffer_bytes()) +
                       " + TriangleMesh (pseudonormals for the sign) " +
                       std::to_string(mesh.memory_bytes());
-    std::vector<T> out;
-    const EmbreePeer<T>& e = *peer;
-    measure(
-        row, [&](const Vec3<T>& p) { return e(p); }, pts, o.points, o, out);
+    row.queries = o.points;
     if (sizeof(T) != 4) row.note = "Embree computes in float";
-    check(row, ref_name, ref, out, m, 1e-5, floor_f);
-    peer.reset();
-    rtcReleaseDevice(device);
+    const EmbreePeer<T>* e = embree.get();
+    passes.push_back(make_pass([e](const Vec3<T>& p) { return (*e)(p); }, pts, o.points, outs[2]));
     run.rows.push_back(std::move(row));
   }
 #endif
 
 #ifdef EBGEOM_BENCH_HAVE_CGAL
+  std::unique_ptr<ebgeom_bench::CgalPeer> cgal;
   {
     Row row;
     row.method = "cgal";
@@ -478,13 +479,12 @@ template <class T> PrecisionRun run_precision(const Options& o) {
       xyz[3 * i + 2] = double(mesh.vertices[i].z);
     }
     std::vector<double> builds;
-    std::unique_ptr<ebgeom_bench::CgalPeer> peer;
     std::size_t bytes = 0;
     for (int r = 0; r < o.reps; ++r) {
-      peer.reset();
+      cgal.reset();
       const std::size_t before = heap_in_use();
       t0 = Clock::now();
-      peer = std::make_unique<ebgeom_bench::CgalPeer>(
+      cgal = std::make_unique<ebgeom_bench::CgalPeer>(
           xyz.data(), mesh.vertex_count(), mesh.triangles.data()->data(), mesh.triangle_count());
       builds.push_back(ms_since(t0));
       bytes = heap_in_use() - before;
@@ -492,24 +492,48 @@ template <class T> PrecisionRun run_precision(const Options& o) {
     row.build_ms = median(builds);
     row.memory = bytes;
     row.memory_note = "heap growth over the build (Surface_mesh + AABB tree + KD-tree of hints)";
-    if (peer->failed_faces() > 0)
-      row.note = std::to_string(peer->failed_faces()) + " faces refused by Surface_mesh; ";
-    if (!peer->closed()) row.note += "not closed (Side_of_triangle_mesh precondition); ";
-    std::vector<T> out;
-    const ebgeom_bench::CgalPeer& c = *peer;
-    measure(
-        row,
-        [&](const Vec3<T>& p) {
-          return T(c.signed_distance(double(p.x), double(p.y), double(p.z)));
-        },
-        pts, std::min(o.points, o.cgal_points), o, out);
+    if (cgal->failed_faces() > 0)
+      row.note = std::to_string(cgal->failed_faces()) + " faces refused by Surface_mesh; ";
+    if (!cgal->closed()) row.note += "not closed (Side_of_triangle_mesh precondition); ";
+    row.queries = std::min(o.points, o.cgal_points);
     if (row.queries < o.points)
-      row.note += "timed on the first " + std::to_string(row.queries) + " points; ";
-    check(row, ref_name, ref, out, m, rel_t, floor_t);
+      row.note += "timed on the first " + std::to_string(row.queries) + " points";
     while (!row.note.empty() && (row.note.back() == ' ' || row.note.back() == ';'))
       row.note.pop_back();
+    const ebgeom_bench::CgalPeer* c = cgal.get();
+    passes.push_back(make_pass(
+        [c](const Vec3<T>& p) {
+          return T(c->signed_distance(double(p.x), double(p.y), double(p.z)));
+        },
+        pts, row.queries, outs[3]));
     run.rows.push_back(std::move(row));
   }
+#endif
+
+  // Timed passes, interleaved: R single-thread rounds, then R T-thread rounds.
+  for (int r = 0; r < o.reps; ++r)
+    for (std::size_t k = 0; k < passes.size(); ++k)
+      run.rows[k].qps1.push_back(double(run.rows[k].queries) / passes[k](1));
+  if (o.threads > 1)
+    for (int r = 0; r < o.reps; ++r)
+      for (std::size_t k = 0; k < passes.size(); ++k)
+        run.rows[k].qpst.push_back(double(run.rows[k].queries) / passes[k](o.threads));
+
+  // Agreement with the reference on the first points.
+  for (std::size_t k = 0; k < run.rows.size(); ++k) {
+    Row& row = run.rows[k];
+    if (row.is_reference) continue;
+    const std::vector<T>& out = outs[row.method == "brute"    ? 1
+                                     : row.method == "embree" ? 2
+                                     : row.method == "cgal"   ? 3
+                                                              : 0];
+    const bool float_peer = row.method == "embree";
+    check(row, ref_name, *out_ref, out, m, float_peer ? 1e-5 : rel_t,
+          float_peer ? floor_f : floor_t);
+  }
+#ifdef EBGEOM_BENCH_HAVE_EMBREE
+  embree.reset();
+  rtcReleaseDevice(device);
 #endif
   return run;
 }
@@ -541,11 +565,12 @@ void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
                 "note");
     for (const Row& r : run.rows) {
       const double q1 = qps(r.qps1), qt = qps(r.qpst);
-      std::printf("%-8s %-7s %10.2f %9.2f %7.1f %12.1f %12.1f %7.2f  %s%s\n", r.method.c_str(),
+      std::string note = r.compute == r.precision ? "" : r.compute;
+      if (!r.note.empty()) note += (note.empty() ? "" : "; ") + r.note;
+      std::printf("%-8s %-7s %10.2f %9.2f %7.1f %12.1f %12.1f %7.2f  %s\n", r.method.c_str(),
                   r.precision.c_str(), r.build_ms, double(r.memory) / 1e6,
                   double(r.memory) / double(std::max<std::size_t>(mi.triangles, 1)), q1 / 1e3,
-                  qt / 1e3, qt / q1, r.compute == r.precision ? "" : (r.compute + "; ").c_str(),
-                  r.note.c_str());
+                  qt / 1e3, qt / q1, note.c_str());
     }
     std::printf("agreement (first points; |d| within rel %g (embree 1e-5) + 16 ulp of the "
                 "coordinates):\n",
@@ -649,7 +674,8 @@ int usage(const char* argv0) {
   std::fprintf(stderr,
                "usage: %s MESH | --generate N  [--points N=1000000] [--reps R=5]\n"
                "       [--precision float|double|both] [--threads T=2] [--check M=20000] "
-               "[--cgal-points K=100000] [--json]\n",
+               "[--cgal-points K=100000] [--json]\n"
+               "       [--json-file PATH]\n",
                argv0);
   return 2;
 }
@@ -673,6 +699,8 @@ int main(int argc, char** argv) {
       o.threads = std::max(1, std::atoi(v));
     } else if (a == "--check" && (v = next())) {
       o.check = std::strtoull(v, nullptr, 10);
+    } else if (a == "--json-file" && (v = next())) {
+      o.json_file = v;
     } else if (a == "--cgal-points" && (v = next())) {
       o.cgal_points = std::max<std::size_t>(1, std::strtoull(v, nullptr, 10));
     } else if (a == "--generate" && (v = next())) {
@@ -690,8 +718,8 @@ int main(int argc, char** argv) {
   o.run_float = precision != "double";
   o.run_double = precision != "float";
 #ifndef EBGEOM_BENCH_HAVE_JSON
-  if (o.json) {
-    std::fprintf(stderr, "--json needs nlohmann-json at build time\n");
+  if (o.json || !o.json_file.empty()) {
+    std::fprintf(stderr, "--json and --json-file need nlohmann-json at build time\n");
     return 2;
   }
 #endif
@@ -699,6 +727,15 @@ int main(int argc, char** argv) {
   if (o.run_float) runs.push_back(run_precision<float>(o));
   if (o.run_double) runs.push_back(run_precision<double>(o));
 #ifdef EBGEOM_BENCH_HAVE_JSON
+  if (!o.json_file.empty()) {
+    std::FILE* f = std::fopen(o.json_file.c_str(), "w");
+    if (!f) {
+      std::fprintf(stderr, "cannot write %s\n", o.json_file.c_str());
+      return 1;
+    }
+    std::fprintf(f, "%s\n", to_json(o, runs).dump(2).c_str());
+    std::fclose(f);
+  }
   if (o.json) {
     std::printf("%s\n", to_json(o, runs).dump(2).c_str());
   } else
