@@ -3,6 +3,7 @@
 // formulas (support functions of convex bodies maximised numerically, sampled curves refined by
 // golden-section search), and a finite-difference Eikonal check.
 
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -133,6 +134,85 @@ inline double convex_polytope_sdf(const V3& p, const std::vector<std::vector<V3>
 inline Vec2<double> meridian(const V3& p, const V3& a, const V3& b) {
   const V3 w = normalized(b - a);
   return {norm(cross(p - a, w)), dot(p - a, w)};
+}
+
+/// Points of the zero set of `s` inside `box`: every edge of an n^3 grid whose end values have
+/// opposite signs is bisected (in double) down to 1e-9 of its length. The distance from a point
+/// to this cloud is >= the true distance to the surface and at most about one grid step more.
+template <class S> std::vector<V3> surface_cloud(const S& s, const Aabb<double>& box, int n) {
+  using T = sdf_scalar_t<S>;
+  const V3 step = box.extent() / double(n);
+  const auto at = [&](int i, int j, int k) {
+    return box.lo + V3{step.x * i, step.y * j, step.z * k};
+  };
+  const auto f = [&](const V3& p) { return double(s(Vec3<T>::from(p))); };
+  std::vector<double> val(std::size_t(n + 1) * (n + 1) * (n + 1));
+  const auto idx = [&](int i, int j, int k) {
+    return (std::size_t(i) * (n + 1) + j) * (n + 1) + k;
+  };
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      for (int k = 0; k <= n; ++k) val[idx(i, j, k)] = f(at(i, j, k));
+  std::vector<V3> cloud;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      for (int k = 0; k <= n; ++k)
+        for (int a = 0; a < 3; ++a) {
+          const int i2 = i + (a == 0), j2 = j + (a == 1), k2 = k + (a == 2);
+          if (i2 > n || j2 > n || k2 > n) continue;
+          const double v0 = val[idx(i, j, k)], v1 = val[idx(i2, j2, k2)];
+          if ((v0 < 0) == (v1 < 0)) continue;
+          V3 lo = at(i, j, k), hi = at(i2, j2, k2);
+          for (int it = 0; it < 40; ++it) {
+            const V3 mid = (lo + hi) * 0.5;
+            ((f(mid) < 0) == (v0 < 0) ? lo : hi) = mid;
+          }
+          cloud.push_back((lo + hi) * 0.5);
+        }
+  return cloud;
+}
+
+inline double cloud_distance(const std::vector<V3>& cloud, const V3& p) {
+  double best = 1e300;
+  for (const auto& q : cloud) best = std::min(best, norm2(q - p));
+  return std::sqrt(best);
+}
+
+/// Checks the `bound` contract of `s` at random points of `box`: |S| <= the distance to a
+/// surface cloud of `s`'s own zero set (which is >= the true distance to that surface).
+/// With `exact_within` > 0 also checks |S| >= cloud distance - exact_within.
+template <class S>
+void expect_bound(const S& s, const Aabb<double>& box, double exact_within = 0, int n = 90,
+                  std::size_t queries = 250) {
+  using T = sdf_scalar_t<S>;
+  const auto cloud = surface_cloud(s, box, n);
+  ASSERT_GT(cloud.size(), 100u);
+  const double step = max_component(box.extent()) / n;
+  const double tol = sizeof(T) == 4 ? 2e-5 : 1e-7;
+  const Aabb<T> qbox = Aabb<T>::from(box);
+  for (const auto& p : random_points(qbox, queries, 4321)) {
+    const double d = cloud_distance(cloud, V3::from(p));
+    const double v = double(s(p));
+    EXPECT_LE(std::abs(v), d + tol) << "overestimate at " << p;
+    if (exact_within > 0) {
+      EXPECT_GE(std::abs(v), d - exact_within) << "not exact at " << p;
+    }
+    (void)step;
+  }
+}
+
+/// Number of non-fatal failures `fn` reports (intercepted, so they do not fail the test): shows
+/// that a check can fail.
+template <class F> int count_failures(F&& fn) {
+  ::testing::TestPartResultArray results;
+  {
+    ::testing::ScopedFakeTestPartResultReporter rep(
+        ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &results);
+    fn();
+  }
+  int n = 0;
+  for (int i = 0; i < results.size(); ++i) n += results.GetTestPartResult(i).nonfatally_failed();
+  return n;
 }
 
 /// Tolerance for comparing a T evaluation with a double reference at points of size ~`scale`.
