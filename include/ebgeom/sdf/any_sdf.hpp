@@ -1,0 +1,72 @@
+#pragma once
+/// \file
+/// `AnySdf<T>`: type erasure for SDFs at batch granularity (STYLE.md example 2). Wraps any SDF
+/// with scalar type T behind one shared immutable model; `eval` makes one virtual call per batch
+/// of points, so the wrapped shape's own (statically composed) evaluation stays inlined.
+
+#include <algorithm>
+#include <cstddef>
+#include <memory>
+#include <type_traits>
+#include <utility>
+
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/span.hpp"
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/sdf/concepts.hpp"
+
+namespace ebgeom {
+
+/// A type-erased SDF with scalar type `T`. Copies share the wrapped shape (immutable), so copies
+/// are cheap and concurrent calls are thread-safe. Its static `kind` is `implicit` (nothing is
+/// known at compile time); `dynamic_kind()` reports the wrapped shape's kind, which batch
+/// evaluators use (see eval/evaluate.hpp `kind_of`). Construction allocates once (may throw
+/// std::bad_alloc); evaluation never allocates or throws.
+template <class T> class AnySdf {
+ public:
+  using scalar_type = T;
+  static constexpr SdfKind kind = SdfKind::implicit;
+
+  // conjunction short-circuits: is_sdf<AnySdf> is never asked while AnySdf is being copied
+  template <class S, class = std::enable_if_t<std::conjunction_v<
+                         std::negation<std::is_same<S, AnySdf>>, detail::is_sdf<S>>>>
+  AnySdf(S shape) // NOLINT(google-explicit-constructor): wrapping is the point
+      : impl_(std::make_shared<const Model<S>>(std::move(shape))) {
+    static_assert(std::is_same_v<sdf_scalar_t<S>, T>,
+                  "ebgeom: AnySdf<T> wraps SDFs whose scalar_type is T");
+  }
+
+  /// Writes S(points[i]) to out[i] for i < min(points.size(), out.size()). One virtual call.
+  void eval(Span<const Vec3<T>> points, Span<T> out) const noexcept {
+    impl_->eval(points.first(std::min(points.size(), out.size())), out);
+  }
+  /// One point (one virtual call; prefer `eval` for many points).
+  T operator()(const Vec3<T>& p) const noexcept { return impl_->value(p); }
+  Aabb<T> bounds() const noexcept { return impl_->bounds(); }
+  /// The wrapped shape's kind.
+  SdfKind dynamic_kind() const noexcept { return impl_->kind(); }
+
+ private:
+  struct Interface {
+    virtual ~Interface() = default;
+    virtual void eval(Span<const Vec3<T>>, Span<T>) const noexcept = 0;
+    virtual T value(const Vec3<T>&) const noexcept = 0;
+    virtual Aabb<T> bounds() const noexcept = 0;
+    virtual SdfKind kind() const noexcept = 0;
+  };
+  template <class S> struct Model final : Interface {
+    explicit Model(S s) : shape(std::move(s)) {}
+    void eval(Span<const Vec3<T>> p, Span<T> out) const noexcept override {
+      const Vec3<T>* in = p.data();
+      T* o = out.data();
+      for (std::size_t i = 0, n = p.size(); i < n; ++i) o[i] = shape(in[i]); // inlined
+    }
+    T value(const Vec3<T>& p) const noexcept override { return shape(p); }
+    Aabb<T> bounds() const noexcept override { return shape.bounds(); }
+    SdfKind kind() const noexcept override { return S::kind; }
+    S shape;
+  };
+  std::shared_ptr<const Interface> impl_; // never null
+};
+
+} // namespace ebgeom
