@@ -9,5 +9,6 @@
 #include "ebgeom/io.hpp"
 #include "ebgeom/mesh.hpp"
 #include "ebgeom/octree.hpp"
+#include "ebgeom/sdf.hpp"
 #include "ebgeom/sdf/brute_force_dcel_sdf.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
