@@ -27,39 +27,26 @@ template <class T> struct BoundingSphere {
 
   /// A sphere enclosing every point (Ritter's algorithm: an initial diameter from two far
   /// points, one growing pass, then an enclosing pass whose radius is inflated by a few ulps so
-  /// that `contains(p)` holds for every input point). At most about 5% larger than the minimal
-  /// sphere in typical inputs. Empty input gives an empty sphere; non-finite coordinates give a
+  /// that `contains(p)` holds for every input point). Typically 5-20% larger than the minimal
+  /// sphere. Empty input gives an empty sphere; non-finite coordinates give a
   /// non-finite sphere. O(n), no allocation.
   static BoundingSphere of_points(Span<const Vec3<T>> pts) noexcept {
-    if (pts.empty()) return {};
-    // 1. Far pair: x -> farthest y -> farthest z.
-    const Vec3<T> x = pts[0];
-    Vec3<T> y = x;
-    T best = T(-1);
-    for (const auto& p : pts)
-      if (norm2(p - x) > best) best = norm2(p - x), y = p;
-    Vec3<T> z = y;
-    best = T(-1);
-    for (const auto& p : pts)
-      if (norm2(p - y) > best) best = norm2(p - y), z = p;
-    BoundingSphere s{(y + z) * T(0.5), norm(z - y) * T(0.5)};
-    // 2. Ritter growth: each outside point moves the far side of the ball onto it.
-    for (const auto& p : pts) {
-      const T d = norm(p - s.center);
-      if (d > s.radius) {
-        const T r = (s.radius + d) * T(0.5);
-        s.center = s.center + (p - s.center) * ((r - s.radius) / d);
-        s.radius = r;
-      }
-    }
-    // 3. Enclosing pass: the radius is the largest computed distance, inflated for rounding in
-    //    the distance itself (relative) and in the center coordinates (absolute, scale of |c|).
-    T r2 = T(0);
-    for (const auto& p : pts) r2 = std::max(r2, norm2(p - s.center));
-    const T eps = std::numeric_limits<T>::epsilon();
-    const T scale = max_component(abs(s.center));
-    s.radius = std::sqrt(r2) * (T(1) + T(8) * eps) + T(8) * eps * scale;
-    return s;
+    return ritter(pts.size(), [&pts](std::size_t i) { return pts[i]; });
+  }
+
+  /// A sphere enclosing every box (Ritter's algorithm over the eight corners of each; empty
+  /// boxes are skipped). O(n), no allocation.
+  static BoundingSphere of_boxes(Span<const Aabb<T>> boxes) noexcept {
+    // skip empty boxes by mapping their corners onto a corner of the first non-empty box
+    std::size_t first = 0;
+    while (first < boxes.size() && boxes[first].is_empty()) ++first;
+    if (first == boxes.size()) return {};
+    return ritter(boxes.size() * 8, [&](std::size_t i) {
+      const Aabb<T>& b = boxes[i / 8].is_empty() ? boxes[first] : boxes[i / 8];
+      const std::size_t c = i % 8;
+      return Vec3<T>{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y,
+                     (c & 4) ? b.hi.z : b.lo.z};
+    });
   }
 
   /// The sphere circumscribing a box (center, half diagonal). Empty box gives an empty sphere.
@@ -125,6 +112,41 @@ template <class T> struct BoundingSphere {
   /// The axis-aligned box of the ball.
   constexpr Aabb<T> bounds() const noexcept {
     return is_empty() ? Aabb<T>{} : Aabb<T>::of(center).grown(radius);
+  }
+
+ private:
+  /// Ritter's algorithm over the points get(0), ..., get(n - 1).
+  template <class Get> static BoundingSphere ritter(std::size_t n, const Get& get) noexcept {
+    if (n == 0) return {};
+    // 1. Far pair: x -> farthest y -> farthest z.
+    const Vec3<T> x = get(0);
+    Vec3<T> y = x;
+    T best = T(-1);
+    for (std::size_t i = 0; i < n; ++i)
+      if (norm2(get(i) - x) > best) best = norm2(get(i) - x), y = get(i);
+    Vec3<T> z = y;
+    best = T(-1);
+    for (std::size_t i = 0; i < n; ++i)
+      if (norm2(get(i) - y) > best) best = norm2(get(i) - y), z = get(i);
+    BoundingSphere s{(y + z) * T(0.5), norm(z - y) * T(0.5)};
+    // 2. Ritter growth: each outside point moves the far side of the ball onto it.
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3<T> p = get(i);
+      const T d = norm(p - s.center);
+      if (d > s.radius) {
+        const T r = (s.radius + d) * T(0.5);
+        s.center = s.center + (p - s.center) * ((r - s.radius) / d);
+        s.radius = r;
+      }
+    }
+    // 3. Enclosing pass: the radius is the largest computed distance, inflated for rounding in
+    //    the distance itself (relative) and in the center coordinates (absolute, scale of |c|).
+    T r2 = T(0);
+    for (std::size_t i = 0; i < n; ++i) r2 = std::max(r2, norm2(get(i) - s.center));
+    const T eps = std::numeric_limits<T>::epsilon();
+    const T scale = max_component(abs(s.center));
+    s.radius = std::sqrt(r2) * (T(1) + T(8) * eps) + T(8) * eps * scale;
+    return s;
   }
 };
 

@@ -98,6 +98,15 @@ TYPED_TEST(BoundingSphereTest, MergeEnclosesBothAndBoxes) {
   for (int c = 0; c < 8; ++c)
     EXPECT_TRUE(sb.contains({(c & 1) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y,
                              (c & 4) ? box.hi.z : box.lo.z}));
+  // many boxes (and an empty one): every corner of every box is enclosed
+  std::vector<Aabb<T>> boxes{box, Aabb<T>{}, Aabb<T>::of({5, 5, 5}, {6, 7, 5.5}),
+                             Aabb<T>::of({-3, 0, 0})};
+  const auto sbs = BoundingSphere<T>::of_boxes(boxes);
+  for (const auto& bx : boxes)
+    for (int c = 0; c < 8 && !bx.is_empty(); ++c)
+      EXPECT_TRUE(sbs.contains(
+          {(c & 1) ? bx.hi.x : bx.lo.x, (c & 2) ? bx.hi.y : bx.lo.y, (c & 4) ? bx.hi.z : bx.lo.z}));
+  EXPECT_TRUE(BoundingSphere<T>::of_boxes(std::vector<Aabb<T>>{Aabb<T>{}}).is_empty());
   const auto sm = merge(BoundingSphere<T>{{10, 0, 0}, 1}, box);
   EXPECT_TRUE(sm.contains(box.lo));
   EXPECT_TRUE(sm.contains(box.hi));
