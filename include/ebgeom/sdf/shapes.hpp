@@ -417,8 +417,11 @@ template <class T> struct PerlinNoise {
       std::swap(perm[i], perm[j]);
     }
   }
-  /// Noise at `p`, in [-1, 1]; 0 at integer lattice points.
+  /// Noise at `p`, in [-1, 1]; 0 at integer lattice points and (rather than undefined
+  /// integer conversions) at non-finite or huge (>= 1e15) coordinates.
   T operator()(const Vec3<T>& p) const noexcept {
+    constexpr T big = T(1e15);
+    if (!(std::abs(p.x) < big && std::abs(p.y) < big && std::abs(p.z) < big)) return T(0);
     const T fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
     const int X = int(std::int64_t(fx) & 255), Y = int(std::int64_t(fy) & 255),
               Z = int(std::int64_t(fz) & 255);

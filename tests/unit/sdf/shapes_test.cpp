@@ -326,6 +326,10 @@ TYPED_TEST(ShapesTest, PerlinNoiseAndDisplacement) {
   EXPECT_TRUE(differs);
   EXPECT_GT(maxabs, 0.2);               // not identically zero
   EXPECT_EQ(n1(v3<T>(3, -2, 5)), T(0)); // gradient noise vanishes on the lattice
+  // bad input is defined: NaN, infinite and huge coordinates give 0
+  EXPECT_EQ(n1(v3<T>(std::nan(""), 0, 0)), T(0));
+  EXPECT_EQ(n1(v3<T>(0, std::numeric_limits<double>::infinity(), 0)), T(0));
+  EXPECT_EQ(n1(v3<T>(0, 0, 1e30)), T(0));
 
   PerlinOptions<T> opt;
   opt.amplitude = T(0.2);
