@@ -233,3 +233,34 @@ TYPED_TEST(TransformsTest, RepetitionEqualsExplicitUnionOfCopies) {
   // disjoint copies of exact spheres: Eikonal away from the cell boundaries
   test::expect_eikonal(repeat(Sphere<T>{Vec3<T>::zero(), T(0.3)}, v3<T>(1, 1, 1)), cube<T>(2));
 }
+
+TYPED_TEST(TransformsTest, BoundsContainTheInside) {
+  using T = TypeParam;
+  const Capsule<T> cap{v3<T>(0.3, -0.2, 0), v3<T>(0.6, 0.5, 0.3), T(0.2)};
+  const auto check = [](const auto& s) {
+    const auto b = s.bounds();
+    int inside = 0;
+    // dense near the box (where a too-small box shows), sparse farther out
+    auto pts = test::random_points(b.grown(T(0.5)), 20000, 13);
+    const auto far = test::random_points(cube<T>(4), 5000, 14);
+    pts.insert(pts.end(), far.begin(), far.end());
+    for (const auto& p : pts) {
+      if (s(p) < T(0)) {
+        ++inside;
+        EXPECT_TRUE(b.contains(p)) << p;
+      }
+    }
+    EXPECT_GT(inside, 200);
+  };
+  check(translate(cap, v3<T>(1, -1, 0.5)));
+  check(rotate(cap, v3<T>(1, 2, 3), T(70)));
+  check(transform(cap, Quaternion<T>::axis_degrees(v3<T>(0, 1, 1), T(-40)), v3<T>(0, 0, 1)));
+  check(scale(cap, T(2)));
+  check(offset(cap, T(0.3)));
+  check(shell(cap, T(0.1)));
+  check(elongate(cap, v3<T>(0.5, 0.2, 0)));
+  check(reflect(cap, v3<T>(1, 1, 0), T(0.2)));
+  check(mirror(cap, 1));
+  check(mollify(cap, T(0.1)));
+  check(repeat(cap, v3<T>(2, 0, 0), {{1, 0, 0}}));
+}
