@@ -1,0 +1,234 @@
+#pragma once
+/// \file
+/// `SignedMeshSdf<T, K, W>`: the exact distance of `MeshSdf` with a selectable sign, for meshes
+/// that are not watertight (holes, flipped patches, duplicates, self-intersections). The magnitude
+/// is always the exact unsigned distance to the triangles; only the sign comes from the mode:
+///
+/// | `SignMode` | inside when | cost per query |
+/// | --- | --- | --- |
+/// | `pseudonormal` | the closest feature's pseudonormal points away (Bærentzen & Aanæs 2005) |
+/// nearest search | | `winding` | exact generalized winding number w > 1/2 (Jacobson et al. 2013) |
+/// + O(n) | | `fast_winding` | Barill et al. 2018 approximation of w > 1/2 | + O(log n) | |
+/// `unsigned_distance` | never (the value is the unsigned distance) | nearest search | |
+/// `automatic` | `pseudonormal` when `validate` finds the mesh closed, manifold and consistently
+/// oriented, else `fast_winding` | |
+///
+/// See docs/sign.md for the outcomes of each mode on imperfect meshes.
+
+#include <cstdint>
+#include <string>
+#include <utility>
+
+#include "ebgeom/core/result.hpp"
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/mesh/polygon_soup.hpp"
+#include "ebgeom/mesh/triangle_mesh.hpp"
+#include "ebgeom/mesh/validate.hpp"
+#include "ebgeom/sdf/concepts.hpp"
+#include "ebgeom/sdf/mesh_sdf.hpp"
+#include "ebgeom/sdf/winding.hpp"
+
+namespace ebgeom {
+
+/// How a mesh SDF decides its sign (the magnitude is always the exact distance).
+enum class SignMode : std::uint8_t {
+  pseudonormal,      ///< closest feature's angle-weighted pseudonormal: exact on watertight meshes
+  winding,           ///< exact generalized winding number > 1/2: robust, O(n) per query
+  fast_winding,      ///< Barill et al. 2018 winding number > 1/2: robust, O(log n) per query
+  unsigned_distance, ///< no sign: the unsigned distance (>= 0 everywhere)
+  automatic,         ///< `pseudonormal` on valid closed meshes, `fast_winding` otherwise
+};
+
+/// Lower-case name of a mode ("pseudonormal", "winding", "fast_winding", "unsigned_distance",
+/// "automatic").
+inline const char* to_string(SignMode m) noexcept {
+  switch (m) {
+  case SignMode::pseudonormal:
+    return "pseudonormal";
+  case SignMode::winding:
+    return "winding";
+  case SignMode::fast_winding:
+    return "fast_winding";
+  case SignMode::unsigned_distance:
+    return "unsigned_distance";
+  case SignMode::automatic:
+    return "automatic";
+  }
+  return "?";
+}
+
+/// The mode `automatic` resolves to, and why (one line).
+struct SignChoice {
+  SignMode mode = SignMode::pseudonormal;
+  std::string reason;
+};
+
+/// What `automatic` picks for a mesh with validation report `r`: `pseudonormal` when the mesh is
+/// closed (no boundary edge), manifold (edges and vertices) and consistently oriented, otherwise
+/// `fast_winding`. The reason names the first failed condition with its count. An inward but
+/// otherwise valid mesh keeps `pseudonormal` (every mode then reports the inside as outside; fix
+/// the orientation with `orient_outward`), and the reason says so.
+template <class T> SignChoice choose_sign_mode(const ValidationReport<T>& r) {
+  SignChoice c;
+  c.mode = SignMode::fast_winding;
+  if (!r.offsets_ok || !r.bad_index_faces.empty() || !r.short_faces.empty() ||
+      !r.non_finite_vertices.empty()) {
+    c.reason = "the mesh is structurally invalid (bad offsets, indices, short faces or NaN)";
+    return c;
+  }
+  if (!r.closed()) {
+    c.reason = "not closed: " + std::to_string(r.boundary_edges.count) + " boundary edges in " +
+               std::to_string(r.holes) + " holes";
+    return c;
+  }
+  if (!r.non_manifold_edges.empty()) {
+    c.reason = "not manifold: " + std::to_string(r.non_manifold_edges.count) +
+               " edges with more than two faces";
+    return c;
+  }
+  if (!r.non_manifold_vertices.empty()) {
+    c.reason = "not manifold: " + std::to_string(r.non_manifold_vertices.count) +
+               " vertices with more than one fan of faces";
+    return c;
+  }
+  if (!r.consistently_oriented()) {
+    c.reason = "inconsistently oriented: " + std::to_string(r.inconsistent_edges.count) +
+               " edges whose two faces traverse them the same way";
+    return c;
+  }
+  c.mode = SignMode::pseudonormal;
+  c.reason = "closed, manifold and consistently oriented";
+  if (!(r.signed_volume > 0))
+    c.reason += " (but inward: negative volume, so inside reads as outside in every mode; "
+                "use orient_outward)";
+  return c;
+}
+
+/// Options of `SignedMeshSdf`.
+struct SignOptions {
+  SignMode mode = SignMode::automatic;
+  WindingOptions winding; ///< fast winding accuracy (beta) and leaf size
+};
+
+/// Exact distance to a triangle mesh with the sign chosen by `SignMode` (see the file comment).
+/// Wraps a `MeshSdf<T, K, W>` (the magnitude, bit for bit `MeshSdf::unsigned_distance`) and, for
+/// the winding modes, a `FastWindingNumber<T, K>`. Sign convention: < 0 inside. Winding modes
+/// report inside where w > 1/2, so a value is negative only if w > 1/2 and the distance is > 0.
+/// Never NaN for finite queries. Immutable; queries are const, allocation-free and thread-safe.
+template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSdf {
+ public:
+  using scalar_type = T;
+  /// Exact magnitude; the sign is exact only with `pseudonormal` on valid meshes, so the static
+  /// kind is `implicit` unless you know better (`resolved_mode()`).
+  static constexpr SdfKind kind = SdfKind::implicit;
+
+  /// Triangulates and validates `soup` (the validation decides `automatic`), then builds.
+  /// Errors: those of `make_triangle_mesh` and `MeshSdf::make`.
+  static Result<SignedMeshSdf> build(const PolygonSoup<T>& soup, const SignOptions& opt = {}) {
+    Result<TriangleMesh<T>> m = make_triangle_mesh(soup);
+    if (!m) return m.error();
+    SignChoice choice;
+    if (opt.mode == SignMode::automatic)
+      choice = choose_sign_mode(validate(soup));
+    else
+      choice = {opt.mode, "requested"};
+    return make_with(std::move(*m), choice, opt);
+  }
+
+  /// Builds from a triangle mesh; `automatic` validates its triangles as a soup.
+  static Result<SignedMeshSdf> make(TriangleMesh<T> mesh, const SignOptions& opt = {}) {
+    SignChoice choice;
+    if (opt.mode == SignMode::automatic) {
+      PolygonSoup<T> soup;
+      soup.vertices = mesh.vertices;
+      for (const auto& t : mesh.triangles) soup.add_triangle(t[0], t[1], t[2]);
+      choice = choose_sign_mode(validate(soup));
+    } else {
+      choice = {opt.mode, "requested"};
+    }
+    return make_with(std::move(mesh), choice, opt);
+  }
+
+  /// Signed distance at `p` (< 0 inside; >= 0 everywhere for `unsigned_distance`).
+  T operator()(const Vec3<T>& p) const noexcept {
+    switch (mode_) {
+    case SignMode::pseudonormal:
+      return sdf_(p);
+    case SignMode::winding:
+    case SignMode::fast_winding: {
+      const T d = sdf_.unsigned_distance(p);
+      return d > T(0) && inside_by_winding(p) ? -d : d;
+    }
+    default:
+      return sdf_.unsigned_distance(p);
+    }
+  }
+
+  /// Closest point, triangle and feature of `MeshSdf::closest`, with `distance` signed by the
+  /// mode (equal in magnitude to `MeshSdf::closest(p).distance`).
+  MeshClosestPoint<T> closest(const Vec3<T>& p) const noexcept {
+    MeshClosestPoint<T> c = sdf_.closest(p);
+    const T d = std::abs(c.distance);
+    switch (mode_) {
+    case SignMode::pseudonormal:
+      break;
+    case SignMode::winding:
+    case SignMode::fast_winding:
+      c.distance = d > T(0) && inside_by_winding(p) ? -d : d;
+      break;
+    default:
+      c.distance = d;
+    }
+    return c;
+  }
+
+  T unsigned_distance(const Vec3<T>& p) const noexcept { return sdf_.unsigned_distance(p); }
+
+  /// Winding number at `p` by the resolved mode's method: exact for `winding`, fast otherwise
+  /// (the fast structure exists only for the winding modes; pseudonormal and unsigned modes
+  /// use the exact sum).
+  T winding_number(const Vec3<T>& p) const noexcept {
+    if (mode_ == SignMode::fast_winding) return fast_(p);
+    return ebgeom::winding_number(sdf_.mesh(), p);
+  }
+
+  /// The mode used (never `automatic`) and why it was chosen ("requested" unless automatic).
+  SignMode resolved_mode() const noexcept { return mode_; }
+  const std::string& reason() const noexcept { return reason_; }
+  const MeshSdf<T, K, W>& mesh_sdf() const noexcept { return sdf_; }
+  const TriangleMesh<T>& mesh() const noexcept { return sdf_.mesh(); }
+  Aabb<T> bounds() const noexcept { return sdf_.bounds(); }
+  std::size_t triangle_count() const noexcept { return sdf_.triangle_count(); }
+  std::size_t memory_bytes() const noexcept {
+    return sdf_.memory_bytes() + (mode_ == SignMode::fast_winding ? fast_.memory_bytes() : 0);
+  }
+
+ private:
+  static Result<SignedMeshSdf> make_with(TriangleMesh<T> mesh, const SignChoice& choice,
+                                         const SignOptions& opt) {
+    SignedMeshSdf s;
+    s.mode_ = choice.mode;
+    s.reason_ = choice.reason;
+    auto sdf = MeshSdf<T, K, W>::make(std::move(mesh)); // checks indices and coordinates
+    if (!sdf) return sdf.error();
+    s.sdf_ = std::move(*sdf);
+    if (s.mode_ == SignMode::fast_winding) {
+      auto f = FastWindingNumber<T, K>::make(s.sdf_.mesh(), opt.winding);
+      if (!f) return f.error();
+      s.fast_ = std::move(*f);
+    }
+    return s;
+  }
+
+  bool inside_by_winding(const Vec3<T>& p) const noexcept {
+    const T w = mode_ == SignMode::fast_winding ? fast_(p) : ebgeom::winding_number(sdf_.mesh(), p);
+    return w > T(0.5);
+  }
+
+  MeshSdf<T, K, W> sdf_;
+  FastWindingNumber<T, K> fast_;
+  SignMode mode_ = SignMode::pseudonormal;
+  std::string reason_;
+};
+
+} // namespace ebgeom

@@ -1,0 +1,122 @@
+// SignedMeshSdf on watertight meshes: every signed mode agrees with pseudonormal away from the
+// surface, the magnitude is MeshSdf's to the last bit, and `automatic` picks pseudonormal.
+#include "ebgeom/sdf/signed_mesh_sdf.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "ebgeom/mesh/generate.hpp"
+#include "sign_support.hpp"
+#include "test_support.hpp"
+
+namespace ebgeom {
+namespace {
+
+template <class T> class SignedMeshSdfTest : public ::testing::Test {};
+TYPED_TEST_SUITE(SignedMeshSdfTest, test::FloatTypes);
+
+constexpr SignMode all_modes[] = {SignMode::pseudonormal, SignMode::winding, SignMode::fast_winding,
+                                  SignMode::unsigned_distance, SignMode::automatic};
+
+template <class T> std::vector<PolygonSoup<T>> watertight() {
+  return {make_icosphere<T>(3).value(), make_torus<T>(1, T(0.3)).value(),
+          make_cube<T>(T(0.5)).value(), make_torus<T>(T(0.7), T(0.2), 24, 12).value()};
+}
+
+template <class T> SignedMeshSdf<T> with_mode(const PolygonSoup<T>& s, SignMode m) {
+  SignOptions o;
+  o.mode = m;
+  return SignedMeshSdf<T>::build(s, o).value();
+}
+
+TYPED_TEST(SignedMeshSdfTest, EverySignedModeAgreesWithPseudonormalOnWatertightMeshes) {
+  using T = TypeParam;
+  for (const auto& soup : watertight<T>()) {
+    const auto ref = MeshSdf<T>::build(soup).value();
+    const auto pts = test::random_points(ref.bounds().grown(T(0.4)), 2000, 13);
+    for (SignMode m : all_modes) {
+      const auto s = with_mode(soup, m);
+      int compared = 0;
+      for (const auto& p : pts) {
+        const T r = ref(p), v = s(p);
+        ASSERT_EQ(std::abs(v), std::abs(r)) << to_string(m) << " " << p; // bit for bit
+        if (std::abs(r) < T(1e-3)) continue; // float noise at the surface
+        ++compared;
+        if (m == SignMode::unsigned_distance)
+          EXPECT_GE(v, T(0));
+        else
+          EXPECT_EQ(v, r) << to_string(m) << " at " << p;
+      }
+      EXPECT_GT(compared, 1500);
+    }
+  }
+}
+
+TYPED_TEST(SignedMeshSdfTest, ClosestCarriesTheModesSign) {
+  using T = TypeParam;
+  const auto soup = make_torus<T>(1, T(0.3)).value();
+  const auto ref = MeshSdf<T>::build(soup).value();
+  for (SignMode m : all_modes) {
+    const auto s = with_mode(soup, m);
+    for (const auto& p : test::random_points(ref.bounds().grown(T(0.2)), 300, 17)) {
+      const auto c = s.closest(p), r = ref.closest(p);
+      EXPECT_EQ(c.distance, s(p));
+      EXPECT_EQ(c.point, r.point);
+      EXPECT_EQ(c.triangle, r.triangle);
+    }
+  }
+}
+
+TEST(SignChoice, AutomaticPicksPseudonormalOnValidMeshesAndSaysWhy) {
+  const auto s = SignedMeshSdf<double>::build(make_icosphere<double>(2).value()).value();
+  EXPECT_EQ(s.resolved_mode(), SignMode::pseudonormal);
+  EXPECT_EQ(s.reason(), "closed, manifold and consistently oriented");
+  const auto open =
+      SignedMeshSdf<double>::build(test::remove_cap(make_icosphere<double>(2).value(), 0.8))
+          .value();
+  EXPECT_EQ(open.resolved_mode(), SignMode::fast_winding);
+  EXPECT_NE(open.reason().find("not closed"), std::string::npos) << open.reason();
+  EXPECT_NE(open.reason().find("1 holes"), std::string::npos) << open.reason();
+  const auto fixed = with_mode(make_icosphere<double>(2).value(), SignMode::winding);
+  EXPECT_EQ(fixed.resolved_mode(), SignMode::winding);
+  EXPECT_EQ(fixed.reason(), "requested");
+  // make() from a TriangleMesh validates its triangles the same way.
+  const auto tm =
+      SignedMeshSdf<double>::make(make_triangle_mesh(make_cube<double>().value()).value()).value();
+  EXPECT_EQ(tm.resolved_mode(), SignMode::pseudonormal);
+}
+
+TEST(SignChoice, InwardMeshKeepsPseudonormalWithAWarning) {
+  PolygonSoup<double> s = make_icosphere<double>(1).value();
+  flip_faces(s);
+  const SignChoice c = choose_sign_mode(validate(s));
+  EXPECT_EQ(c.mode, SignMode::pseudonormal);
+  EXPECT_NE(c.reason.find("inward"), std::string::npos);
+}
+
+TEST(SignedMeshSdfErrors, BadInputIsAnError) {
+  EXPECT_FALSE(SignedMeshSdf<double>::build(PolygonSoup<double>{}).has_value());
+  PolygonSoup<double> s = make_cube<double>().value();
+  s.vertices[0].x = std::nan("");
+  for (SignMode m : all_modes) {
+    SignOptions o;
+    o.mode = m;
+    EXPECT_FALSE(SignedMeshSdf<double>::build(s, o).has_value());
+  }
+  SignOptions o;
+  o.mode = SignMode::fast_winding;
+  o.winding.beta = -1;
+  EXPECT_EQ(SignedMeshSdf<double>::build(make_cube<double>().value(), o).error().code,
+            ErrorCode::invalid_argument);
+}
+
+TEST(SignedMeshSdfNames, ToString) {
+  EXPECT_STREQ(to_string(SignMode::fast_winding), "fast_winding");
+  EXPECT_STREQ(to_string(SignMode::unsigned_distance), "unsigned_distance");
+  EXPECT_STREQ(to_string(SignMode::automatic), "automatic");
+}
+
+} // namespace
+} // namespace ebgeom

@@ -1,0 +1,138 @@
+// Exact and fast generalized winding numbers (sdf/winding.hpp).
+#include "ebgeom/sdf/winding.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "ebgeom/mesh/generate.hpp"
+#include "ebgeom/mesh/triangle_mesh.hpp"
+#include "sign_support.hpp"
+#include "test_support.hpp"
+
+namespace ebgeom {
+namespace {
+
+template <class T> class WindingTest : public ::testing::Test {};
+TYPED_TEST_SUITE(WindingTest, test::FloatTypes);
+
+TYPED_TEST(WindingTest, ExactIsOneInsideZeroOutsideClosedMeshes) {
+  using T = TypeParam;
+  for (const auto& soup : {make_icosphere<T>(2).value(), make_torus<T>(1, T(0.3)).value(),
+                           make_cube<T>(T(0.5)).value()}) {
+    const TriangleMesh<T> m = make_triangle_mesh(soup).value();
+    const auto sdf = test::brute_sdf(m);
+    for (const auto& p : test::random_points(m.bounds().grown(T(0.3)), 300, 7)) {
+      const T s = sdf(p);
+      if (std::abs(s) < T(1e-3)) continue;
+      const T w = winding_number(m, p);
+      EXPECT_NEAR(w, s < 0 ? T(1) : T(0), sizeof(T) == 4 ? 1e-4 : 1e-10) << p;
+    }
+  }
+}
+
+TYPED_TEST(WindingTest, FastEqualsExactOnClosedMeshes) {
+  using T = TypeParam;
+  for (const auto& soup : {make_icosphere<T>(3).value(), make_torus<T>(1, T(0.3)).value(),
+                           make_cube<T>(T(0.5)).value()}) {
+    const TriangleMesh<T> m = make_triangle_mesh(soup).value();
+    const auto fw = FastWindingNumber<T>::make(m).value();
+    double worst = 0;
+    for (const auto& p : test::random_points(m.bounds().grown(T(0.5)), 2000, 11)) {
+      const T w = fw(p), e = fw.exact(p);
+      ASSERT_TRUE(std::isfinite(w));
+      worst = std::max(worst, std::abs(double(w) - double(e)));
+      EXPECT_NEAR(e, winding_number(m, p), sizeof(T) == 4 ? 1e-5 : 1e-12);
+    }
+    EXPECT_LT(worst, test::fast_winding_tolerance);
+  }
+}
+
+TYPED_TEST(WindingTest, FastApproximatesExactOnOpenMeshesAndConvergesWithBeta) {
+  using T = TypeParam;
+  // An open bowl: the icosphere without its upper cap (z > 0.3), plus a torus with a slot cut out.
+  const TriangleMesh<T> bowl =
+      make_triangle_mesh(test::remove_cap(make_icosphere<T>(4).value(), T(0.3))).value();
+  const auto pts = test::random_points(bowl.bounds().grown(T(0.5)), 3000, 5);
+  double prev = 1;
+  for (double beta : {1.0, 2.0, 4.0}) {
+    WindingOptions o;
+    o.beta = beta;
+    const auto fw = FastWindingNumber<T>::make(bowl, o).value();
+    double worst = 0;
+    int side_changes = 0;
+    for (const auto& p : pts) {
+      const double w = fw(p), e = fw.exact(p);
+      worst = std::max(worst, std::abs(w - e));
+      if ((w > 0.5) != (e > 0.5) && std::abs(e - 0.5) > test::fast_winding_tolerance)
+        ++side_changes;
+    }
+    EXPECT_LT(worst, prev) << "beta " << beta;
+    if (beta >= 2) {
+      EXPECT_LT(worst, beta >= 4 ? 0.02 : test::fast_winding_tolerance) << "beta " << beta;
+    }
+    EXPECT_EQ(side_changes, 0) << "beta " << beta;
+    prev = worst;
+  }
+}
+
+TYPED_TEST(WindingTest, SingleLeafMeshIsExact) {
+  using T = TypeParam;
+  const TriangleMesh<T> m = make_triangle_mesh(make_tetrahedron<T>().value()).value();
+  const auto fw = FastWindingNumber<T>::make(m).value();
+  ASSERT_TRUE(fw.tree().root.is_leaf());
+  for (const auto& p : test::random_points(m.bounds().grown(T(1)), 200, 3))
+    EXPECT_EQ(fw(p), fw.exact(p));
+}
+
+TYPED_TEST(WindingTest, FiniteOnVerticesEdgesFacesAndFarAway) {
+  using T = TypeParam;
+  const TriangleMesh<T> m = make_triangle_mesh(make_icosphere<T>(2).value()).value();
+  const auto fw = FastWindingNumber<T>::make(m).value();
+  std::vector<Vec3<T>> pts(m.vertices);
+  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+    pts.push_back((m.corner(t, 0) + m.corner(t, 1)) / T(2));
+    pts.push_back((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / T(3));
+  }
+  pts.push_back({T(1e30), T(0), T(0)});
+  pts.push_back({T(0), T(0), T(0)});
+  for (const auto& p : pts) {
+    ASSERT_TRUE(std::isfinite(fw(p))) << p;
+    ASSERT_TRUE(std::isfinite(fw.exact(p))) << p;
+  }
+}
+
+TEST(WindingErrors, RefusedInputs) {
+  TriangleMesh<double> empty;
+  EXPECT_EQ(FastWindingNumber<double>::make(empty).error().code, ErrorCode::empty);
+  const TriangleMesh<double> m = make_triangle_mesh(make_cube<double>().value()).value();
+  WindingOptions o;
+  o.beta = 0;
+  EXPECT_EQ(FastWindingNumber<double>::make(m, o).error().code, ErrorCode::invalid_argument);
+  o.beta = std::nan("");
+  EXPECT_EQ(FastWindingNumber<double>::make(m, o).error().code, ErrorCode::invalid_argument);
+  TriangleMesh<double> bad = m;
+  bad.vertices[0].x = std::nan("");
+  EXPECT_EQ(FastWindingNumber<double>::make(bad).error().code, ErrorCode::non_finite);
+  bad = m;
+  bad.triangles[0][1] = 1000;
+  EXPECT_EQ(FastWindingNumber<double>::make(bad).error().code, ErrorCode::bad_index);
+}
+
+TEST(WindingBvh, EveryWidthAgrees) {
+  const TriangleMesh<double> m = make_triangle_mesh(make_torus<double>(1, 0.4).value()).value();
+  const auto f2 = FastWindingNumber<double, 2>::make(m).value();
+  const auto f4 = FastWindingNumber<double, 4>::make(m).value();
+  const auto f8 = FastWindingNumber<double, 8>::make(m).value();
+  for (const auto& p : test::random_points(m.bounds().grown(0.5), 500, 9)) {
+    const double e = winding_number(m, p);
+    EXPECT_NEAR(f2(p), e, test::fast_winding_tolerance);
+    EXPECT_NEAR(f4(p), e, test::fast_winding_tolerance);
+    EXPECT_NEAR(f8(p), e, test::fast_winding_tolerance);
+  }
+}
+
+} // namespace
+} // namespace ebgeom
