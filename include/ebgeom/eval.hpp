@@ -1,7 +1,11 @@
 #pragma once
 /// \file
-/// Umbrella header of the evaluation module: batch evaluation, dense grids and grid writers.
+/// Umbrella header of the evaluation module: batch evaluation, dense, sub-box and sparse grids,
+/// grid writers.
 
 #include "ebgeom/eval/evaluate.hpp"
 #include "ebgeom/eval/grid.hpp"
+#include "ebgeom/eval/grid_blocks.hpp"
+#include "ebgeom/eval/grid_spec.hpp"
+#include "ebgeom/eval/sparse_grid.hpp"
 #include "ebgeom/eval/write_grid.hpp"

@@ -24,6 +24,16 @@ struct has_batch_eval<S, std::void_t<decltype(std::declval<const S&>().eval(
                              std::declval<Span<const Vec3<typename S::scalar_type>>>(),
                              std::declval<Span<typename S::scalar_type>>()))>> : std::true_type {};
 
+template <class S, class = void> struct has_bounded_query : std::false_type {};
+template <class S>
+struct has_bounded_query<S, std::void_t<decltype(std::declval<const S&>().bounded(
+                                std::declval<const Vec3<typename S::scalar_type>&>(),
+                                std::declval<typename S::scalar_type>()))>>
+    : std::is_convertible<decltype(std::declval<const S&>().bounded(
+                              std::declval<const Vec3<typename S::scalar_type>&>(),
+                              std::declval<typename S::scalar_type>())),
+                          typename S::scalar_type> {};
+
 template <class S, class = void> struct has_dynamic_kind : std::false_type {};
 template <class S>
 struct has_dynamic_kind<S, std::void_t<decltype(std::declval<const S&>().dynamic_kind())>>
@@ -34,6 +44,13 @@ struct has_dynamic_kind<S, std::void_t<decltype(std::declval<const S&>().dynamic
 /// `AnySdf<T>` and the CLI's scene programs do). Batch evaluators then call it once per batch
 /// instead of `S::operator()` once per point.
 template <class S> inline constexpr bool has_batch_eval_v = detail::has_batch_eval<S>::value;
+
+/// True when `S` (an `exact` SDF) has a bounded query
+/// `T bounded(const Vec3<T>& p, T max_abs) const noexcept` that returns exactly `S(p)` (bit for
+/// bit) whenever |S(p)| <= max_abs, and otherwise any value v with |v| > max_abs whose sign is not
+/// trusted (`MeshSdf` has one). Grid samplers then seed each search with a neighbour's value
+/// (1-Lipschitz) and narrow-band searches with the band.
+template <class S> inline constexpr bool has_bounded_query_v = detail::has_bounded_query<S>::value;
 
 /// The kind of `sdf`: `sdf.dynamic_kind()` when `S` provides it (runtime-composed SDFs whose
 /// static `kind` must be conservative), otherwise `S::kind`.

@@ -14,6 +14,7 @@
 
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/error.hpp"
+#include "ebgeom/core/parallel.hpp"
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/span.hpp"
 
@@ -38,6 +39,10 @@ struct OctreeOptions {
   OctreeOrder order = OctreeOrder::depth_first;
   /// For `build_from_boxes`: a leaf is refined while it holds more primitives than this.
   std::size_t max_leaf_size = 8;
+  /// `build` in breadth-first order only: the refinement predicate runs on this many threads
+  /// (0 = all cores) for the nodes of one level, which must then be thread-safe (it may only
+  /// write its own payload). The tree does not depend on it. Default 1: serial.
+  int threads = 1;
 };
 
 /// Octant `c` (bit 0: upper x half, bit 1: upper y, bit 2: upper z) of `box`.
@@ -84,7 +89,8 @@ template <class T, class P = NoPayload> class Octree {
       Node& n = tree.nodes_[i];
       return n.depth < opt.max_depth && refine(std::as_const(n.box), int(n.depth), n.payload);
     };
-    tree.grow(opt.order, split);
+    tree.grow(
+        opt.order, split, [](std::uint32_t, std::uint32_t) {}, opt.threads);
     return tree;
   }
 
@@ -237,15 +243,39 @@ template <class T, class P = NoPayload> class Octree {
   }
 
   // Grows the tree from the root. `split(i)` decides node i (after its payload is set);
-  // `on_children(parent, first)` runs right after children are created.
+  // `on_children(parent, first)` runs right after children are created. `threads != 1`
+  // (breadth-first only) decides the nodes of a level concurrently, then creates their children
+  // serially in node order, so the tree is the same.
   template <class Split, class OnChildren = void (*)(std::uint32_t, std::uint32_t)>
   void grow(
-      OctreeOrder order, Split& split,
-      OnChildren on_children = [](std::uint32_t, std::uint32_t) {}) {
+      OctreeOrder order, Split& split, OnChildren on_children = [](std::uint32_t, std::uint32_t) {},
+      int threads = 1) {
     if (order == OctreeOrder::breadth_first) {
       // Level by level: every node of depth d is decided before any of depth d + 1 is created.
       std::size_t level_begin = 0, level_end = 1;
+      std::vector<std::uint8_t> decide;
       while (level_begin < level_end) {
+        if (threads != 1) {
+          decide.assign(level_end - level_begin, 0);
+          ExecOptions ex;
+          ex.threads = threads;
+          ex.serial_threshold = 64;
+          // No node is added while the level is decided, so references into nodes_ stay valid.
+          parallel_for(
+              level_begin, level_end, 16,
+              [&](std::size_t b, std::size_t e) {
+                for (std::size_t i = b; i < e; ++i)
+                  decide[i - level_begin] = split(static_cast<std::uint32_t>(i)) ? 1 : 0;
+              },
+              ex);
+          for (std::size_t i = level_begin; i < level_end; ++i) {
+            const auto idx = static_cast<std::uint32_t>(i);
+            if (decide[i - level_begin]) on_children(idx, add_children(idx));
+          }
+          level_begin = level_end;
+          level_end = nodes_.size();
+          continue;
+        }
         for (std::size_t i = level_begin; i < level_end; ++i) {
           const auto idx = static_cast<std::uint32_t>(i);
           if (split(idx)) on_children(idx, add_children(idx));

@@ -189,6 +189,16 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     return search(p, std::nextafter(b2, std::numeric_limits<T>::infinity()));
   }
 
+  /// Bounded query for grid samplers (`sample_grid` detects it): returns exactly `(*this)(p)` (bit
+  /// for bit) whenever |S(p)| <= `max_abs`; otherwise +infinity, whose sign means nothing (the
+  /// sign far from the surface is not cheap here). The search radius is widened by a few ulps so
+  /// that rounding never misses a surface point at distance `max_abs`. As `closest_within`:
+  /// faster than `operator()` when `max_abs` is small. Thread-safe, allocation-free.
+  T bounded(const Vec3<T>& p, T max_abs) const noexcept {
+    const T r = max_abs + max_abs * (T(4) * std::numeric_limits<T>::epsilon());
+    return closest_within(p, r).distance;
+  }
+
   /// Unsigned distance (no sign decision).
   T unsigned_distance(const Vec3<T>& p) const noexcept {
     T best2 = std::numeric_limits<T>::infinity();

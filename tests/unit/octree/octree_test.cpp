@@ -189,3 +189,22 @@ TEST(Octree, RejectsBadParameters) {
   EXPECT_EQ(t.size(), 1u);
   EXPECT_EQ(t.primitives(t.root()).size(), 1u);
 }
+
+TYPED_TEST(OctreeTest, ParallelBreadthFirstBuildsTheSameTree) {
+  using T = TypeParam;
+  const Aabb<T> root = Aabb<T>::of({-1, -1, -1}, {1, 1, 1});
+  OctreeOptions opt;
+  opt.max_depth = 6;
+  opt.order = OctreeOrder::breadth_first;
+  const auto serial = Octree<T, T>::build(root, SurfaceRefine<T>{}, opt).value();
+  for (int threads : {2, 3, 0}) {
+    opt.threads = threads;
+    const auto par = Octree<T, T>::build(root, SurfaceRefine<T>{}, opt).value();
+    ASSERT_EQ(par.size(), serial.size());
+    for (std::size_t i = 0; i < serial.size(); ++i) {
+      ASSERT_EQ(par.node(std::uint32_t(i)).box, serial.node(std::uint32_t(i)).box);
+      ASSERT_EQ(par.node(std::uint32_t(i)).first_child, serial.node(std::uint32_t(i)).first_child);
+      ASSERT_EQ(par.node(std::uint32_t(i)).payload, serial.node(std::uint32_t(i)).payload);
+    }
+  }
+}

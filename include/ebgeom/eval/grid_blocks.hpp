@@ -1,0 +1,402 @@
+#pragma once
+/// \file
+/// The engine behind `sample_grid`, `sample_grid_box` and `sample_grid_sparse` (no stability
+/// promise: users call those). Two parts:
+///
+/// - `detail::plan_grid`: which 8^3 tiles to evaluate. Dense: every tile of the range. Narrow band
+///   (exact or bound SDFs): an `Octree` over tile indices, built breadth-first with the levels
+///   decided in parallel. A node evaluates S at the centre c of its samples' box (radius r) and is
+///   dropped when |S(c)| > (r + band) (1 + 64 eps): S is 1-Lipschitz with |S| <= distance, so every
+///   sample is farther than the band, on the side of sign S(c). Surviving nodes split down to
+///   single tiles. Nodes are aligned to the whole grid's tiles, so a sub-range makes the same
+///   decisions as the full grid. Leaves come out in Morton order (octant order, depth first).
+/// - `detail::eval_tile`: the values of one tile. With a bounded query (`has_bounded_query_v`),
+///   each sample's search is bounded by its neighbour's |S| plus their distance (coherence) and,
+///   in a band, by the band; samples the band search proves far get their sign from a neighbour
+///   inside the tile (a far sample's ball of radius > band >= spacing holds no surface, so its
+///   axis neighbours share its sign) or, failing that, from one full query.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/eval/evaluate.hpp"
+#include "ebgeom/eval/grid_spec.hpp"
+#include "ebgeom/octree/octree.hpp"
+#include "ebgeom/sdf/concepts.hpp"
+
+namespace ebgeom::detail {
+
+/// Sample positions exactly as `GridSpec::point` computes them, plus tile counts.
+template <class T> struct GridFrame {
+  Vec3<T> o, h;
+  std::array<std::size_t, 3> n, tiles;
+
+  explicit GridFrame(const GridSpec<T>& s) noexcept : o(s.origin()), h(s.spacing()), n(s.dims) {
+    for (int a = 0; a < 3; ++a) tiles[a] = (n[a] + grid_tile - 1) / grid_tile;
+  }
+  Vec3<T> point(std::size_t i, std::size_t j, std::size_t k) const noexcept {
+    return {o.x + T(i) * h.x, o.y + T(j) * h.y, o.z + T(k) * h.z};
+  }
+  /// Samples [lo, hi) of tiles [a, b) (clipped to the grid).
+  void sample_range(const std::array<std::size_t, 3>& a, const std::array<std::size_t, 3>& b,
+                    std::array<std::size_t, 3>& lo, std::array<std::size_t, 3>& hi) const noexcept {
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = a[d] * grid_tile;
+      hi[d] = std::min(n[d], b[d] * grid_tile);
+    }
+  }
+};
+
+/// Relative slack applied to Lipschitz bounds so rounding never turns a valid bound invalid.
+template <class T> constexpr T lipschitz_slack() noexcept {
+  return T(64) * std::numeric_limits<T>::epsilon();
+}
+
+/// One tile to evaluate (`fill == false`) or to fill from a skipped block's centre value.
+template <class T> struct TileJob {
+  std::array<std::uint32_t, 3> tile{};
+  bool fill = false;
+  bool has_centre = false; ///< `value`, `centre` hold S at the centre of an enclosing block
+  T value = 0;
+  Vec3<T> centre{};
+};
+
+/// The tiles of a grid range: jobs in Morton order, plus skipped blocks (tile ranges).
+template <class T> struct GridPlan {
+  struct Skipped {
+    std::array<std::size_t, 3> a, b; ///< tiles [a, b), clipped to the range's tiles
+    T value;                         ///< S at `centre`; |value| > r + band
+    Vec3<T> centre;
+  };
+  std::vector<TileJob<T>> eval;
+  std::vector<Skipped> skipped;
+};
+
+/// Per-sample parameters of `eval_tile`.
+template <class T> struct TileParams {
+  T band = 0; ///< 0 = dense
+  BandFill outside = BandFill::clamp;
+  bool coherent = true;
+  bool can_propagate = false; ///< band >= the largest spacing: far samples share neighbours' signs
+};
+
+/// Value written at a sample proven (from a block centre) farther than the band.
+template <class T>
+inline T far_value(const TileParams<T>& prm, T centre_value, T centre_dist) noexcept {
+  if (prm.outside == BandFill::clamp) return std::copysign(prm.band, centre_value);
+  const T eps = lipschitz_slack<T>();
+  const T lb = (std::abs(centre_value) - centre_dist * (T(1) + eps)) * (T(1) - eps);
+  return std::copysign(std::max(prm.band, lb), centre_value);
+}
+
+/// Value written at an evaluated sample in banded mode.
+template <class T> inline T band_value(const TileParams<T>& prm, T v) noexcept {
+  if (prm.outside == BandFill::clamp && std::abs(v) > prm.band) return std::copysign(prm.band, v);
+  return v;
+}
+
+/// The sample before local sample (x, y, z) in scan order that is its axis neighbour, or -1.
+inline int scan_neighbour(std::size_t x, std::size_t y, std::size_t z) noexcept {
+  constexpr int W = int(grid_tile);
+  const int l = int(x) + W * (int(y) + W * int(z));
+  if (x > 0) return l - 1;
+  if (y > 0) return l - W;
+  if (z > 0) return l - W * W;
+  return -1;
+}
+
+/// Fills `vals[x + 8 (y + 8 z)]` (local indices, stride 8 even for partial tiles) with the values
+/// of tile `job.tile`: S (dense) or the banded values of `TileParams`. Bit for bit what per-point
+/// evaluation gives (then clamped) at every sample inside the band.
+template <class S>
+void eval_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
+               const TileJob<sdf_scalar_t<S>>& job, const TileParams<sdf_scalar_t<S>>& prm,
+               sdf_scalar_t<S>* vals) {
+  using T = sdf_scalar_t<S>;
+  constexpr std::size_t W = grid_tile;
+  const std::size_t i0 = job.tile[0] * W, j0 = job.tile[1] * W, k0 = job.tile[2] * W;
+  const std::size_t sx = std::min(f.n[0], i0 + W) - i0, sy = std::min(f.n[1], j0 + W) - j0,
+                    sz = std::min(f.n[2], k0 + W) - k0;
+  const T eps = lipschitz_slack<T>();
+  const T tiny = std::numeric_limits<T>::min();
+
+  if constexpr (has_bounded_query_v<S>) {
+    if (prm.band > 0) {
+      // 0: exact value in vals; 1: sign known (vals holds the final value); 2: sign unknown.
+      std::uint8_t state[W * W * W];
+      for (std::size_t z = 0; z < sz; ++z)
+        for (std::size_t y = 0; y < sy; ++y)
+          for (std::size_t x = 0; x < sx; ++x) {
+            const std::size_t l = x + W * (y + W * z);
+            const Vec3<T> p = f.point(i0 + x, j0 + y, k0 + z);
+            if (job.has_centre) {
+              // |S(p)| >= |S(c)| - |p - c| (1-Lipschitz): proven far without a search.
+              const T d = norm(p - job.centre);
+              const T lb = (std::abs(job.value) - d * (T(1) + eps)) * (T(1) - eps);
+              if (lb > prm.band) {
+                vals[l] = far_value(prm, job.value, d);
+                state[l] = 1;
+                continue;
+              }
+            }
+            T bound = prm.band;
+            const int q = prm.coherent ? scan_neighbour(x, y, z) : -1;
+            if (q >= 0 && state[q] == 0) {
+              const Vec3<T> pq = f.point(i0 + std::size_t(q) % W, j0 + std::size_t(q) / W % W,
+                                         k0 + std::size_t(q) / (W * W));
+              const T seed = (std::abs(vals[q]) + norm(p - pq)) * (T(1) + eps) + tiny;
+              bound = std::min(bound, seed);
+            }
+            T v = sdf.bounded(p, bound);
+            if (!(std::abs(v) <= bound) && bound < prm.band) v = sdf.bounded(p, prm.band);
+            if (std::abs(v) <= prm.band) {
+              vals[l] = v;
+              state[l] = 0;
+            } else {
+              state[l] = 2;
+            }
+          }
+      // Signs of far samples: flood from known neighbours (see the file comment), else one full
+      // query per remaining connected component.
+      std::uint16_t stack[W * W * W];
+      int top = 0;
+      bool any_unknown = false;
+      for (std::size_t z = 0; z < sz; ++z)
+        for (std::size_t y = 0; y < sy; ++y)
+          for (std::size_t x = 0; x < sx; ++x) {
+            const std::size_t l = x + W * (y + W * z);
+            any_unknown = any_unknown || state[l] == 2;
+          }
+      if (any_unknown) {
+        auto flood = [&] {
+          while (top > 0) {
+            const std::size_t l = stack[--top];
+            const std::size_t x = l % W, y = l / W % W, z = l / (W * W);
+            const T sign = vals[l];
+            auto visit = [&](std::size_t m) {
+              if (state[m] != 2) return;
+              state[m] = 1;
+              vals[m] = std::copysign(prm.band, sign);
+              stack[top++] = static_cast<std::uint16_t>(m);
+            };
+            if (x > 0) visit(l - 1);
+            if (x + 1 < sx) visit(l + 1);
+            if (y > 0) visit(l - W);
+            if (y + 1 < sy) visit(l + W);
+            if (z > 0) visit(l - W * W);
+            if (z + 1 < sz) visit(l + W * W);
+          }
+        };
+        if (prm.can_propagate) {
+          for (std::size_t z = 0; z < sz; ++z)
+            for (std::size_t y = 0; y < sy; ++y)
+              for (std::size_t x = 0; x < sx; ++x) {
+                const std::size_t l = x + W * (y + W * z);
+                if (state[l] != 2) stack[top++] = static_cast<std::uint16_t>(l);
+              }
+          flood();
+        }
+        for (std::size_t z = 0; z < sz; ++z)
+          for (std::size_t y = 0; y < sy; ++y)
+            for (std::size_t x = 0; x < sx; ++x) {
+              const std::size_t l = x + W * (y + W * z);
+              if (state[l] != 2) continue;
+              vals[l] = band_value(prm, sdf(f.point(i0 + x, j0 + y, k0 + z)));
+              state[l] = 1;
+              if (prm.can_propagate) {
+                stack[top++] = static_cast<std::uint16_t>(l);
+                flood();
+              }
+            }
+      }
+      for (std::size_t z = 0; z < sz; ++z)
+        for (std::size_t y = 0; y < sy; ++y)
+          for (std::size_t x = 0; x < sx; ++x) {
+            const std::size_t l = x + W * (y + W * z);
+            if (state[l] == 0) vals[l] = band_value(prm, vals[l]);
+          }
+      return;
+    }
+    if (prm.coherent) {
+      for (std::size_t z = 0; z < sz; ++z)
+        for (std::size_t y = 0; y < sy; ++y)
+          for (std::size_t x = 0; x < sx; ++x) {
+            const std::size_t l = x + W * (y + W * z);
+            const Vec3<T> p = f.point(i0 + x, j0 + y, k0 + z);
+            const int q = scan_neighbour(x, y, z);
+            T v;
+            if (q < 0) {
+              v = sdf(p);
+            } else {
+              const Vec3<T> pq = f.point(i0 + std::size_t(q) % W, j0 + std::size_t(q) / W % W,
+                                         k0 + std::size_t(q) / (W * W));
+              const T bound = (std::abs(vals[q]) + norm(p - pq)) * (T(1) + eps) + tiny;
+              v = sdf.bounded(p, bound);
+              if (!(std::abs(v) <= bound)) v = sdf(p); // rounding beat the slack: full search
+            }
+            vals[l] = v;
+          }
+      return;
+    }
+  }
+
+  if constexpr (has_batch_eval_v<S>) {
+    Vec3<T> pts[W * W * W];
+    T tmp[W * W * W];
+    std::size_t n = 0;
+    for (std::size_t z = 0; z < sz; ++z)
+      for (std::size_t y = 0; y < sy; ++y)
+        for (std::size_t x = 0; x < sx; ++x) pts[n++] = f.point(i0 + x, j0 + y, k0 + z);
+    sdf.eval(Span<const Vec3<T>>(pts, n), Span<T>(tmp, n));
+    n = 0;
+    for (std::size_t z = 0; z < sz; ++z)
+      for (std::size_t y = 0; y < sy; ++y)
+        for (std::size_t x = 0; x < sx; ++x) vals[x + W * (y + W * z)] = tmp[n++];
+  } else {
+    for (std::size_t z = 0; z < sz; ++z)
+      for (std::size_t y = 0; y < sy; ++y)
+        for (std::size_t x = 0; x < sx; ++x)
+          vals[x + W * (y + W * z)] = sdf(f.point(i0 + x, j0 + y, k0 + z));
+  }
+  if (prm.band > 0)
+    for (std::size_t z = 0; z < sz; ++z)
+      for (std::size_t y = 0; y < sy; ++y)
+        for (std::size_t x = 0; x < sx; ++x) {
+          T& v = vals[x + W * (y + W * z)];
+          v = band_value(prm, v);
+        }
+}
+
+/// Skipped-block payload of the tile octree.
+template <class T> struct BlockInfo {
+  T value = 0;
+  Vec3<T> centre{};
+  std::uint8_t state = 0; ///< 0: outside the range, 1: skipped (far), 2: kept
+};
+
+/// Tiles `[ta, tb)` of the range `region` (sample indices).
+inline void range_tiles(const GridRange& region, std::array<std::size_t, 3>& ta,
+                        std::array<std::size_t, 3>& tb) noexcept {
+  for (int a = 0; a < 3; ++a) {
+    ta[a] = region.lo[a] / grid_tile;
+    tb[a] = (region.hi[a] + grid_tile - 1) / grid_tile;
+  }
+}
+
+/// Plans the tiles of `region` (see the file comment). `skip` enables the octree.
+template <class S>
+GridPlan<sdf_scalar_t<S>> plan_grid(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
+                                    const GridRange& region, double band_d, bool skip,
+                                    const ExecOptions& exec) {
+  using T = sdf_scalar_t<S>;
+  GridPlan<T> plan;
+  std::array<std::size_t, 3> ta, tb;
+  range_tiles(region, ta, tb);
+  if (!skip) {
+    plan.eval.reserve((tb[0] - ta[0]) * (tb[1] - ta[1]) * (tb[2] - ta[2]));
+    for (std::size_t k = ta[2]; k < tb[2]; ++k)
+      for (std::size_t j = ta[1]; j < tb[1]; ++j)
+        for (std::size_t i = ta[0]; i < tb[0]; ++i) {
+          TileJob<T> job;
+          job.tile = {{std::uint32_t(i), std::uint32_t(j), std::uint32_t(k)}};
+          plan.eval.push_back(job);
+        }
+    std::sort(plan.eval.begin(), plan.eval.end(), [](const TileJob<T>& a, const TileJob<T>& b) {
+      return morton3(a.tile[0], a.tile[1], a.tile[2]) < morton3(b.tile[0], b.tile[1], b.tile[2]);
+    });
+    return plan;
+  }
+  // Octree over tile indices [0, 2^D)^3 of the whole grid; nodes at depth D are single tiles.
+  int depth = 0;
+  while ((std::size_t(1) << depth) < std::max({f.tiles[0], f.tiles[1], f.tiles[2]})) ++depth;
+  const T band = T(band_d);
+  const T eps = lipschitz_slack<T>();
+  auto refine = [&](const Aabb<T>& box, int d, BlockInfo<T>& info) {
+    std::array<std::size_t, 3> a, b, lo, hi;
+    for (int ax = 0; ax < 3; ++ax) {
+      a[ax] = std::size_t(box.lo[ax]);
+      b[ax] = std::min(std::size_t(box.hi[ax]), f.tiles[ax]);
+      if (a[ax] >= b[ax] || a[ax] >= tb[ax] || b[ax] <= ta[ax]) {
+        info.state = 0;
+        return false;
+      }
+    }
+    f.sample_range(a, b, lo, hi);
+    const Vec3<T> p0 = f.point(lo[0], lo[1], lo[2]);
+    const Vec3<T> p1 = f.point(hi[0] - 1, hi[1] - 1, hi[2] - 1);
+    const Vec3<T> mid = (p0 + p1) * T(0.5);
+    const T r = norm(p1 - p0) * T(0.5);
+    info.centre = mid;
+    info.value = sdf(mid);
+    if (std::abs(info.value) > (r + band) * (T(1) + eps)) {
+      info.state = 1;
+      return false;
+    }
+    info.state = 2;
+    return d < depth;
+  };
+  OctreeOptions oopt;
+  oopt.max_depth = depth + 1; // refine runs at depth D too, and declines to split there
+  oopt.order = OctreeOrder::breadth_first;
+  oopt.threads = exec.threads;
+  const T side = T(std::size_t(1) << depth);
+  const auto tree =
+      Octree<T, BlockInfo<T>>::build(Aabb<T>({T(0), T(0), T(0)}, {side, side, side}), refine, oopt)
+          .value(); // the root box is valid by construction
+  tree.traverse([&](std::uint32_t, const auto& node) {
+    if (!node.is_leaf()) return true;
+    const BlockInfo<T>& info = node.payload;
+    std::array<std::size_t, 3> a, b;
+    for (int ax = 0; ax < 3; ++ax) {
+      a[ax] = std::max(std::size_t(node.box.lo[ax]), ta[ax]);
+      b[ax] = std::min(std::size_t(node.box.hi[ax]), tb[ax]);
+    }
+    if (info.state == 1) {
+      plan.skipped.push_back({a, b, info.value, info.centre});
+    } else if (info.state == 2) {
+      TileJob<T> job;
+      job.tile = {{std::uint32_t(a[0]), std::uint32_t(a[1]), std::uint32_t(a[2])}};
+      job.has_centre = true;
+      job.value = info.value;
+      job.centre = info.centre;
+      plan.eval.push_back(job);
+    }
+    return true;
+  });
+  return plan;
+}
+
+/// `TileParams` for `opt` on grid `spec`.
+template <class T>
+TileParams<T> tile_params(const GridSpec<T>& spec, const GridOptions& opt) noexcept {
+  TileParams<T> prm;
+  prm.band = T(opt.band);
+  prm.outside = opt.outside;
+  prm.coherent = opt.search == GridSearch::coherent;
+  const Vec3<T> h = spec.spacing();
+  T hmax = 0;
+  for (int a = 0; a < 3; ++a)
+    if (spec.dims[a] > 1) hmax = std::max(hmax, h[a]);
+  prm.can_propagate = prm.band >= hmax * (T(1) + lipschitz_slack<T>());
+  return prm;
+}
+
+/// Common argument checks of the samplers.
+template <class T>
+Result<Ok> check_grid_args(const GridSpec<T>& spec, const GridRange& region, const GridOptions& opt,
+                           const char* who) {
+  if (auto ok = spec.validate(); !ok) return ok;
+  if (auto ok = region.validate(spec); !ok) return ok;
+  if (!(opt.band >= 0) || !std::isfinite(opt.band))
+    return make_error(ErrorCode::invalid_argument, who, ": band must be finite and >= 0");
+  return Ok{};
+}
+
+} // namespace ebgeom::detail
