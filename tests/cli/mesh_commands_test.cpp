@@ -134,7 +134,10 @@ TEST(Query, DistancesClosestPointsAndNormalsOnAMesh) {
     ASSERT_EQ(d.data[i], ref.distance) << p;
     const V cp{c.data[3 * i], c.data[3 * i + 1], c.data[3 * i + 2]};
     const V nn{n.data[3 * i], n.data[3 * i + 1], n.data[3 * i + 2]};
-    EXPECT_NEAR(norm(cp - ref.point), 0, 1e-12);
+    // The closest point: at the reported distance from p and on the surface (on exact ties the
+    // BVH may report another closest point than the brute force).
+    EXPECT_NEAR(norm(p - cp), std::abs(ref.distance), 1e-12) << p;
+    EXPECT_NEAR(sdf(cp), 0, 1e-12) << p;
     EXPECT_NEAR(norm(nn), 1, 1e-12);
     // Moving against the normal by S lands on the closest point: p - S n = c.
     EXPECT_NEAR(norm(p - nn * ref.distance - cp), 0, 1e-9) << p;
