@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -38,18 +39,27 @@ template <class T> struct Pending {
 };
 
 /// Fixed-capacity stack on the call stack (no allocation). The capacity is proven by the builder.
+/// The storage is left uninitialised (a union with an empty constructor): only pushed entries are
+/// ever read, and constructing N entries per query would cost more than the query.
 template <class E, int N> class FixedStack {
+  static_assert(std::is_trivially_copyable_v<E> && std::is_trivially_destructible_v<E>,
+                "FixedStack holds trivially copyable entries");
+
  public:
+  FixedStack() noexcept {}
   void push(const E& e) noexcept {
     EBGEOM_ASSERT(size_ < N);
-    data_[size_++] = e;
+    store_.data[size_++] = e;
   }
-  E pop() noexcept { return data_[--size_]; }
+  E pop() noexcept { return store_.data[--size_]; }
   bool empty() const noexcept { return size_ == 0; }
   int size() const noexcept { return size_; }
 
  private:
-  E data_[N];
+  union Storage {
+    Storage() noexcept {}
+    E data[N];
+  } store_;
   int size_ = 0;
 };
 
@@ -58,8 +68,7 @@ template <class E, int N> class FixedStack {
 /// Also adds the smallest normal number so a bound of exactly 0 (a point primitive at the query)
 /// still admits that primitive.
 template <class T> constexpr T shrink_bound(T far2) noexcept {
-  return far2 * (T(1) + T(64) * std::numeric_limits<T>::epsilon()) +
-         std::numeric_limits<T>::min();
+  return far2 * (T(1) + T(64) * std::numeric_limits<T>::epsilon()) + std::numeric_limits<T>::min();
 }
 
 /// Nearest-first branch and bound (see the file comment). `best2` is in/out: the initial bound and
@@ -133,8 +142,8 @@ void nearest_unordered(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2,
 
 namespace detail {
 template <class T, int K, class LeafFn>
-void nearest_recursive_at(const WideBvh<T, K>& bvh, const ChildRef ref, const Vec3<T>& p,
-                          T& best2, LeafFn& leaf) noexcept {
+void nearest_recursive_at(const WideBvh<T, K>& bvh, const ChildRef ref, const Vec3<T>& p, T& best2,
+                          LeafFn& leaf) noexcept {
   if (ref.is_leaf()) {
     leaf(ref.index, ref.count, best2);
     return;
@@ -227,10 +236,9 @@ struct SlotKey {
 /// by `key(slot)` (e.g. the input index). Exact: equal to sorting all primitives that way and
 /// keeping the first k.
 template <class T, int K, class Dist2Fn, class KeyFn = SlotKey>
-std::vector<Neighbour<T>> k_nearest(const WideBvh<T, K>& bvh, const Vec3<T>& p, std::size_t k,
-                                    Dist2Fn&& dist2,
-                                    T max_dist2 = std::numeric_limits<T>::infinity(),
-                                    KeyFn&& key = {}) {
+std::vector<Neighbour<T>>
+k_nearest(const WideBvh<T, K>& bvh, const Vec3<T>& p, std::size_t k, Dist2Fn&& dist2,
+          T max_dist2 = std::numeric_limits<T>::infinity(), KeyFn&& key = {}) {
   std::vector<Neighbour<T>> heap; // max-heap on (dist2, key)
   if (k == 0) return heap;
   heap.reserve(k + 1);

@@ -99,6 +99,9 @@ template <class S, int K = 4> class BvhUnion {
     for (const S& s : unbounded_) best = std::min(best, s(p));
     if constexpr (prunes) {
       T best2 = key(best);
+      // (The farthest-box shrink `nearest<true>` is valid here too, but on the seeds' lattice it
+      // costs more node work than it saves: measured with callgrind, 3,034 vs 2,158 instructions
+      // per query.)
       bvh::nearest(bvh_, p, best2, [&](std::uint32_t first, std::uint32_t count, T& b2) {
         for (std::uint32_t i = first; i < first + count; ++i) {
           const T v = objects_[i](p);
