@@ -114,8 +114,8 @@ template <class S> struct Scaled {
 };
 
 /// Offset (rounding, "RoundedSDF" in EBGeometry): S - r, which grows the shape by r (shrinks it
-/// for r < 0). Exact outside for r >= 0 and inside for r <= 0, and everywhere for convex
-/// operands; in general `bound` (kind: exact -> bound).
+/// for r < 0). Exact outside for r >= 0 and inside for r <= 0, and everywhere when a convex
+/// operand grows (r >= 0); in general `bound` (kind: exact -> bound).
 template <class S> struct Offset {
   EBGEOM_REQUIRE_SDF(S);
   using T = sdf_scalar_t<S>;
