@@ -3,9 +3,10 @@
 /// Dense SDF grids: `sample_grid(sdf, spec, out, GridOptions)` fills a dense array with S at every
 /// sample of a `GridSpec`, and `sample_grid_box` fills any sub-box (`GridRange`) of it with the
 /// same values (for MPI ranks and AMReX/Chombo boxes). Work goes by 8^3 tiles in Morton order,
-/// threads over tiles. Exact values are searched coherently (a neighbour's |S| bounds the next
-/// search) for SDFs with a bounded query; a narrow band skips, through an octree over the tiles,
-/// every block proven farther than the band from the surface (see `grid_blocks.hpp`).
+/// threads over tiles. SDFs with a bounded query search a narrow band only within the band (and,
+/// optionally, within a neighbour's |S| plus their distance); a narrow band skips, through an
+/// octree over the tiles, every block proven farther than the band from the surface (see
+/// `grid_blocks.hpp`).
 ///
 /// Memory layout of every grid array in ebgeom: **x fastest**, then y, then z:
 /// `out[i + nx * (j + ny * k)]` is the sample `(i, j, k)`. Seen as a C-order array its shape is

@@ -11,10 +11,10 @@
 ///   single tiles. Nodes are aligned to the whole grid's tiles, so a sub-range makes the same
 ///   decisions as the full grid. Leaves come out in Morton order (octant order, depth first).
 /// - `detail::eval_tile`: the values of one tile. With a bounded query (`has_bounded_query_v`),
-///   each sample's search is bounded by its neighbour's |S| plus their distance (coherence) and,
-///   in a band, by the band; samples the band search proves far get their sign from a neighbour
-///   inside the tile (a far sample's ball of radius > band >= spacing holds no surface, so its
-///   axis neighbours share its sign) or, failing that, from one full query.
+///   each sample's search is bounded, in a band, by the band and, with `GridSearch::coherent`, by
+///   its neighbour's |S| plus their distance; samples the band search proves far get their sign
+///   from a neighbour inside the tile (a far sample's ball of radius > band >= spacing holds no
+///   surface, so its axis neighbours share its sign) or, failing that, from one full query.
 
 #include <algorithm>
 #include <array>

@@ -134,13 +134,16 @@ enum class BandFill : std::uint8_t {
               ///< was evaluated, S itself; in skipped blocks |S(c)| - |p - c| from the block centre
 };
 
-/// How the exact values of a grid are searched for.
+/// How the exact values of a grid are searched for (never changes them).
 enum class GridSearch : std::uint8_t {
-  /// SDFs with a bounded query (`has_bounded_query_v`) seed each sample's search with the value
-  /// of its neighbour: S is 1-Lipschitz, so |S(p)| <= |S(q)| + |p - q|. The default.
-  coherent,
-  /// Every sample is searched for on its own (for comparison; same values).
-  independent
+  /// Every sample is searched for on its own; in a narrow band, SDFs with a bounded query
+  /// (`has_bounded_query_v`) search only within the band. The default: on the ogre mesh the
+  /// coherent seed below gave no gain (0.97x at 256^3, docs/performance.md), because `MeshSdf`'s
+  /// search already shrinks its bound to the nearest box's farthest distance at the first nodes.
+  independent,
+  /// SDFs with a bounded query also seed each sample's search with its neighbour's value: S is
+  /// 1-Lipschitz, so |S(p)| <= |S(q)| + |p - q| (inflated by 64 ulps). Same values.
+  coherent
 };
 
 /// Options of `sample_grid`, `sample_grid_box` and `sample_grid_sparse`.
@@ -156,7 +159,7 @@ struct GridOptions {
   /// Values outside the band (ignored when `band == 0`).
   BandFill outside = BandFill::clamp;
   /// Search strategy for exact values (never changes them).
-  GridSearch search = GridSearch::coherent;
+  GridSearch search = GridSearch::independent;
   /// Called after each tile with (tiles done, tile count), possibly from several threads at once:
   /// it must be thread-safe and cheap. Empty = no reporting.
   std::function<void(std::size_t, std::size_t)> progress;

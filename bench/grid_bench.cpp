@@ -1,0 +1,218 @@
+// Grid sampling benchmark (issue 5): dense exact grids (coherent vs independent searches), the
+// octree narrow band (dense and sparse output) against ebgeom's dense grid and OpenVDB's
+// meshToVolume (when built with EBGEOM_BENCH_HAVE_OPENVDB), thread scaling, and the memory of a
+// sparse narrow band. Every figure is the median of --reps runs (wall clock, steady_clock).
+//
+// Usage: ebgeom_bench_grid_bench [--mesh PATH] [--reps N] [--dense N] [--band N] [--sparse N]
+//                                [--cells C] [--threads T] [--only dense|band|sparse]
+// Defaults: ../shared/meshes/ogre.obj, 5 reps, dense 256^3, band 512^3, sparse 1024^3, 3 cells,
+// 2 threads. Box: the mesh's bounding box grown by 10% of its extent per side. float throughout.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ebgeom/eval/grid.hpp"
+#include "ebgeom/eval/sparse_grid.hpp"
+#include "ebgeom/io/read_mesh.hpp"
+#include "ebgeom/sdf/mesh_sdf.hpp"
+
+#if defined(EBGEOM_BENCH_HAVE_OPENVDB)
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/MeshToVolume.h>
+#include <tbb/global_control.h>
+#endif
+
+using namespace ebgeom;
+using T = float;
+
+namespace {
+
+struct Options {
+  std::string mesh = "../shared/meshes/ogre.obj";
+  int reps = 5;
+  std::size_t dense = 256, band = 512, sparse = 1024;
+  double cells = 3;
+  int threads = 2;
+  std::string only;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Median wall time of `reps` runs of `fn`.
+double median_time(int reps, const std::function<void()>& fn) {
+  std::vector<double> t;
+  for (int r = 0; r < reps; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    fn();
+    t.push_back(seconds_since(t0));
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+GridSpec<T> grid_over(const Aabb<T>& bounds, std::size_t n) {
+  const Vec3<T> e = bounds.extent();
+  Aabb<T> box = bounds;
+  box.lo = box.lo - e * T(0.1);
+  box.hi = box.hi + e * T(0.1);
+  // Cubic cells: n cells on the longest axis, the others rounded up to whole cells.
+  const T h = std::max({box.extent().x, box.extent().y, box.extent().z}) / T(n);
+  GridSpec<T> g;
+  for (int a = 0; a < 3; ++a) {
+    g.dims[a] = std::size_t(std::ceil(box.extent()[a] / h));
+    box.hi[a] = box.lo[a] + h * T(g.dims[a]);
+  }
+  g.box = box;
+  return g;
+}
+
+void print_row(const char* what, std::size_t n, int threads, double s, const char* note = "") {
+  std::printf("%-44s %5zu^3 %2d thr  %10.3f s  %s\n", what, n, threads, s, note);
+  std::fflush(stdout);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> const char* {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "%s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--mesh")
+      o.mesh = next();
+    else if (a == "--reps")
+      o.reps = std::atoi(next());
+    else if (a == "--dense")
+      o.dense = std::size_t(std::atol(next()));
+    else if (a == "--band")
+      o.band = std::size_t(std::atol(next()));
+    else if (a == "--sparse")
+      o.sparse = std::size_t(std::atol(next()));
+    else if (a == "--cells")
+      o.cells = std::atof(next());
+    else if (a == "--threads")
+      o.threads = std::atoi(next());
+    else if (a == "--only")
+      o.only = next();
+    else {
+      std::fprintf(stderr, "unknown option %s (see the file comment)\n", a.c_str());
+      return 2;
+    }
+  }
+  auto soup = io::read_mesh<T>(o.mesh);
+  if (!soup) {
+    std::fprintf(stderr, "cannot read %s: %s\n", o.mesh.c_str(), soup.error().message.c_str());
+    return 1;
+  }
+  auto sdf_r = MeshSdf<T>::build(*soup);
+  if (!sdf_r) {
+    std::fprintf(stderr, "cannot build the SDF: %s\n", sdf_r.error().message.c_str());
+    return 1;
+  }
+  const MeshSdf<T>& sdf = *sdf_r;
+  std::printf("mesh %s: %zu triangles; medians of %d runs\n", o.mesh.c_str(), sdf.triangle_count(),
+              o.reps);
+  auto want = [&](const char* part) { return o.only.empty() || o.only == part; };
+
+  if (want("dense")) {
+    const GridSpec<T> g = grid_over(sdf.bounds(), o.dense);
+    std::vector<T> a(g.size()), b(g.size());
+    std::printf("dense grid %zux%zux%zu\n", g.nx(), g.ny(), g.nz());
+    GridOptions opt;
+    opt.exec.threads = 1;
+    opt.search = GridSearch::independent;
+    const double ind = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(b), opt); });
+    print_row("dense exact, independent per-point", o.dense, 1, ind);
+    opt.search = GridSearch::coherent;
+    const double coh = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(a), opt); });
+    print_row("dense exact, coherent (neighbour bound)", o.dense, 1, coh);
+    std::printf("  coherent speed-up %.2fx; %.1f ns/sample coherent, %.1f independent; %s\n",
+                ind / coh, 1e9 * coh / double(g.size()), 1e9 * ind / double(g.size()),
+                a == b ? "identical values" : "VALUES DIFFER");
+    opt.exec.threads = o.threads;
+    opt.search = GridSearch::independent; // the default
+    const double ind2 = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(a), opt); });
+    print_row("dense exact, independent (default)", o.dense, o.threads, ind2);
+    std::printf("  %d threads vs 1: %.2fx\n", o.threads, ind / ind2);
+    const double n3 = double(o.band) / double(o.dense);
+    std::printf("  extrapolated dense %zu^3 (x%.0f): %.1f s (1 thread)\n", o.band, n3 * n3 * n3,
+                std::min(ind, coh) * n3 * n3 * n3);
+  }
+
+  if (want("band")) {
+    const GridSpec<T> g = grid_over(sdf.bounds(), o.band);
+    const double h = double(g.spacing().x);
+    GridOptions opt;
+    opt.band = o.cells * h;
+    std::printf("band grid %zux%zux%zu, band %.2f cells = %.5g\n", g.nx(), g.ny(), g.nz(), o.cells,
+                opt.band);
+    std::size_t blocks = 0;
+    for (int threads : {1, o.threads}) {
+      opt.exec.threads = threads;
+      const double sp = median_time(o.reps, [&] {
+        auto r = sample_grid_sparse(sdf, g, opt);
+        blocks = r ? r->block_count() : 0;
+      });
+      print_row("narrow band, sparse output (kept 8^3 blocks)", o.band, threads, sp);
+      std::vector<T> out(g.size());
+      const double dn = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(out), opt); });
+      print_row("narrow band, dense output", o.band, threads, dn);
+    }
+    std::printf("  kept blocks: %zu of %zu tiles\n", blocks,
+                ((g.nx() + 7) / 8) * ((g.ny() + 7) / 8) * ((g.nz() + 7) / 8));
+#if defined(EBGEOM_BENCH_HAVE_OPENVDB)
+    openvdb::initialize();
+    std::vector<openvdb::Vec3s> pts;
+    std::vector<openvdb::Vec3I> tris;
+    const auto& m = sdf.mesh();
+    for (const auto& v : m.vertices) pts.emplace_back(v.x, v.y, v.z);
+    for (const auto& t : m.triangles) tris.emplace_back(t[0], t[1], t[2]);
+    const auto xform = openvdb::math::Transform::createLinearTransform(h);
+    for (int threads : {1, o.threads}) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+      std::size_t voxels = 0;
+      const double vdb = median_time(o.reps, [&] {
+        auto grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
+            *xform, pts, tris, std::vector<openvdb::Vec4I>(), float(o.cells), float(o.cells));
+        voxels = grid->activeVoxelCount();
+      });
+      print_row("OpenVDB meshToSignedDistanceField", o.band, threads, vdb);
+      std::printf("  OpenVDB active voxels: %zu\n", voxels);
+    }
+#else
+    std::printf("  OpenVDB peer not built (sh bench/install-openvdb.sh, re-run CMake)\n");
+#endif
+  }
+
+  if (want("sparse")) {
+    const GridSpec<T> g = grid_over(sdf.bounds(), o.sparse);
+    GridOptions opt;
+    opt.band = o.cells * double(g.spacing().x);
+    opt.exec.threads = o.threads;
+    std::size_t bytes = 0, blocks = 0;
+    const double t = median_time(std::max(1, o.reps / 2), [&] {
+      auto r = sample_grid_sparse(sdf, g, opt);
+      bytes = r ? r->memory_bytes() : 0;
+      blocks = r ? r->block_count() : 0;
+    });
+    print_row("narrow band, sparse output", o.sparse, o.threads, t);
+    std::printf("  grid %zux%zux%zu: %zu kept blocks, %.1f MiB (a dense float array: %.1f MiB)\n",
+                g.nx(), g.ny(), g.nz(), blocks, double(bytes) / 1048576.0,
+                double(g.size()) * sizeof(T) / 1048576.0);
+  }
+  return 0;
+}
