@@ -74,10 +74,10 @@ int main(int argc, char** argv) {
   for (int i = 1; i <= M; ++i)
     for (int j = 1; j <= M; ++j)
       for (int k = 1; k <= M; ++k)
-        spheres.push_back({{-1. + i * (delta + 2 * radius) - radius,
-                            -1. + j * (delta + 2 * radius) - radius,
-                            -1. + k * (delta + 2 * radius) - radius},
-                           radius});
+        spheres.push_back(
+            {{-1. + i * (delta + 2 * radius) - radius, -1. + j * (delta + 2 * radius) - radius,
+              -1. + k * (delta + 2 * radius) - radius},
+             radius});
   std::printf("%zu spheres of radius %g, delta = %g\n", spheres.size(), radius, delta);
 
   // The seeds' standard union: shared_ptr<SDF> objects, one virtual call per sphere.
@@ -119,7 +119,8 @@ int main(int argc, char** argv) {
   }
   std::size_t mismatches = 0;
   for (std::size_t i = 0; i < pts.size(); ++i)
-    mismatches += std::memcmp(&a[i], &c[i], sizeof(T)) != 0 || std::memcmp(&b[i], &c[i], sizeof(T)) != 0;
+    mismatches +=
+        std::memcmp(&a[i], &c[i], sizeof(T)) != 0 || std::memcmp(&b[i], &c[i], sizeof(T)) != 0;
   const double n = double(samples);
   const double seeds_q = median(t_seeds) / n, linear_q = median(t_linear) / n,
                fast_q = median(t_fast) / n;

@@ -64,11 +64,11 @@ template <class T> struct BuildTree {
 
 /// What a partition sees of the node it splits.
 template <class T> struct PartitionInput {
-  Span<const Aabb<T>> boxes;      ///< per input primitive
-  Span<const Vec3<T>> centroids;  ///< per input primitive
-  Aabb<T> box;                    ///< the node's box (union of its primitives' boxes)
-  Aabb<T> centroid_box;           ///< box of its primitives' centroids
-  int depth = 0;                  ///< the node's depth (root = 0)
+  Span<const Aabb<T>> boxes;     ///< per input primitive
+  Span<const Vec3<T>> centroids; ///< per input primitive
+  Aabb<T> box;                   ///< the node's box (union of its primitives' boxes)
+  Aabb<T> centroid_box;          ///< box of its primitives' centroids
+  int depth = 0;                 ///< the node's depth (root = 0)
 };
 
 /// Output of a partition: part i is `idx[ends[i-1] .. ends[i])` (ends[-1] = 0) after the
@@ -95,8 +95,7 @@ struct BuildOptions {
 /// Leaf when a node holds at most `max_leaf_size` primitives.
 struct LeafSizeStop {
   std::uint32_t max_leaf_size = 4;
-  template <class T>
-  bool operator()(const PartitionInput<T>&, std::uint32_t count) const noexcept {
+  template <class T> bool operator()(const PartitionInput<T>&, std::uint32_t count) const noexcept {
     return count <= max_leaf_size;
   }
 };
@@ -262,8 +261,10 @@ BuildTree<T> build_top_down(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centr
       std::uint32_t prev = 0;
       for (int i = 0; i < parts.count && ok; ++i) {
         const std::uint32_t e = parts.ends[std::size_t(i)];
-        if (e < prev || e > count) ok = false;
-        else if (e > prev) bounds[std::size_t(++m)] = e;
+        if (e < prev || e > count)
+          ok = false;
+        else if (e > prev)
+          bounds[std::size_t(++m)] = e;
         prev = e;
       }
       ok = ok && m >= 2;
@@ -352,8 +353,10 @@ BuildTree<T> build_morton(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroi
       std::uint32_t lo = 0, hi = cnt;
       while (lo < hi) {
         const std::uint32_t mid = (lo + hi) / 2;
-        if (((*codes)[idx[mid]] & mask) < prefix) lo = mid + 1;
-        else hi = mid;
+        if (((*codes)[idx[mid]] & mask) < prefix)
+          lo = mid + 1;
+        else
+          hi = mid;
       }
       p.ends[0] = lo;
       return p;

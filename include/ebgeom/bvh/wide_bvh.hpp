@@ -98,7 +98,7 @@ template <class T, int K> struct WideBvh {
   std::vector<WideNode<T, K>> nodes;
   std::vector<std::uint32_t> prim;
   ChildRef root;
-  Aabb<T> box; ///< bounds of everything
+  Aabb<T> box;   ///< bounds of everything
   int depth = 0; ///< node levels (0 when the root is a leaf or empty)
 
   std::size_t size() const noexcept { return prim.size(); }
@@ -170,12 +170,11 @@ template <class T, int K> struct Flattener {
       if (a == b) continue;
       Aabb<T> box;
       for (std::size_t i = a; i < b; ++i) box.extend(tree.nodes[kids[i]].box);
-      const ChildRef r =
-          b - a == 1
-              ? ref_of(kids[a], level + 1)
-              : emit(std::vector<std::uint32_t>(kids.begin() + std::ptrdiff_t(a),
-                                                kids.begin() + std::ptrdiff_t(b)),
-                     level + 1);
+      const ChildRef r = b - a == 1
+                             ? ref_of(kids[a], level + 1)
+                             : emit(std::vector<std::uint32_t>(kids.begin() + std::ptrdiff_t(a),
+                                                               kids.begin() + std::ptrdiff_t(b)),
+                                    level + 1);
       WideNode<T, K>& w = out.nodes[index];
       w.child[g] = r;
       w.set_child_box(g, box);
@@ -213,12 +212,16 @@ template <class T, int K, class LeafBox> void refit(WideBvh<T, K>& bvh, const Le
     WideNode<T, K>& n = bvh.nodes[i];
     for (int k = 0; k < K; ++k) {
       const ChildRef r = n.child[k];
-      if (r.is_leaf()) n.set_child_box(k, leaf_box(r.index, r.count));
-      else if (r.is_inner()) n.set_child_box(k, bvh.nodes[r.index].bounds());
+      if (r.is_leaf())
+        n.set_child_box(k, leaf_box(r.index, r.count));
+      else if (r.is_inner())
+        n.set_child_box(k, bvh.nodes[r.index].bounds());
     }
   }
-  if (bvh.root.is_leaf()) bvh.box = leaf_box(bvh.root.index, bvh.root.count);
-  else if (bvh.root.is_inner()) bvh.box = bvh.nodes[bvh.root.index].bounds();
+  if (bvh.root.is_leaf())
+    bvh.box = leaf_box(bvh.root.index, bvh.root.count);
+  else if (bvh.root.is_inner())
+    bvh.box = bvh.nodes[bvh.root.index].bounds();
 }
 
 } // namespace ebgeom::bvh

@@ -105,12 +105,12 @@ EBGEOM_FORCE_INLINE void block_distance2(const TriBlock<T, W>& t, const Vec3<T>&
     m = d2 < m ? d2 : m;
 
     // Face region: w_k = n · (edge_k x (p - start_k))
-    const T w0 = nx * (aby * apz - abz * apy) + ny * (abz * apx - abx * apz) +
-                 nz * (abx * apy - aby * apx);
-    const T w1 = nx * (bcy * bpz - bcz * bpy) + ny * (bcz * bpx - bcx * bpz) +
-                 nz * (bcx * bpy - bcy * bpx);
-    const T w2 = nx * (cay * cpz - caz * cpy) + ny * (caz * cpx - cax * cpz) +
-                 nz * (cax * cpy - cay * cpx);
+    const T w0 =
+        nx * (aby * apz - abz * apy) + ny * (abz * apx - abx * apz) + nz * (abx * apy - aby * apx);
+    const T w1 =
+        nx * (bcy * bpz - bcz * bpy) + ny * (bcz * bpx - bcx * bpz) + nz * (bcx * bpy - bcy * bpx);
+    const T w2 =
+        nx * (cay * cpz - caz * cpy) + ny * (caz * cpx - cax * cpz) + nz * (cax * cpy - cay * cpx);
     const T h = nx * apx + ny * apy + nz * apz;
     const T fd2 = h * h / (nn > T(0) ? nn : T(1));
     const bool inside = nn > T(0) && w0 >= T(0) && w1 >= T(0) && w2 >= T(0) && fd2 <= m;
@@ -157,8 +157,8 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
       boxes[t] = s.mesh_.triangle_bounds(t);
       centroids[t] = boxes[t].center();
     }
-    s.bvh_ = bvh::flatten<K>(bvh::build(Span<const Aabb<T>>(boxes),
-                                        Span<const Vec3<T>>(centroids), options));
+    s.bvh_ = bvh::flatten<K>(
+        bvh::build(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(centroids), options));
     s.pack_blocks();
     return s;
   }
@@ -256,8 +256,8 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
       for (Index i : m.triangles[t])
         if (i >= m.vertices.size())
           return {ErrorCode::bad_index, "mesh SDF: triangle " + std::to_string(t) +
-                                            " uses vertex " + std::to_string(i) + " >= " +
-                                            std::to_string(m.vertices.size())};
+                                            " uses vertex " + std::to_string(i) +
+                                            " >= " + std::to_string(m.vertices.size())};
     return {};
   }
 
@@ -319,8 +319,8 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     const auto& tri = mesh_.triangles[t];
     const TriangleClosestPoint<T> cp = closest_point_triangle(
         p, mesh_.vertices[tri[0]], mesh_.vertices[tri[1]], mesh_.vertices[tri[2]]);
-    r.distance = signed_distance_from(p, cp.point, cp.distance2,
-                                      feature_pseudonormal(mesh_, t, cp.feature));
+    r.distance =
+        signed_distance_from(p, cp.point, cp.distance2, feature_pseudonormal(mesh_, t, cp.feature));
     r.point = cp.point;
     r.triangle = t;
     r.feature = cp.feature;

@@ -156,8 +156,8 @@ TYPED_TEST(BuildTest, UserPartitionAndStopFunctionsDriveTheBuild) {
     return p;
   };
   auto stop = [](const PartitionInput<T>& in, std::uint32_t n) { return in.depth >= 3 || n < 2; };
-  const auto t = build_top_down<T>(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(cent), part,
-                                   stop);
+  const auto t =
+      build_top_down<T>(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(cent), part, stop);
   EXPECT_GT(calls, 0);
   EXPECT_EQ(t.depth, 4);
   EXPECT_EQ(t.nodes[0].children, 3u);
@@ -232,7 +232,8 @@ TEST(Refit, BoxesFollowMovedPrimitives) {
   auto boxes = random_boxes<double>(1000);
   const auto cent = centers(boxes);
   auto w = flatten<4>(build(Span<const Aabb<double>>(boxes), Span<const Vec3<double>>(cent)));
-  for (auto& b : boxes) b = {b.lo * 2.0 + Vec3<double>{3, 0, 0}, b.hi * 2.0 + Vec3<double>{3, 0, 0}};
+  for (auto& b : boxes)
+    b = {b.lo * 2.0 + Vec3<double>{3, 0, 0}, b.hi * 2.0 + Vec3<double>{3, 0, 0}};
   refit(w, [&](std::uint32_t first, std::uint32_t count) {
     Aabb<double> b;
     for (std::uint32_t s = first; s < first + count; ++s) b.extend(boxes[w.prim[s]]);

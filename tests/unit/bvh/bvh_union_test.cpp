@@ -22,9 +22,7 @@ template <class T> struct Ball {
   Aabb<T> bounds() const noexcept { return Aabb<T>::of(c).grown(r); }
 };
 /// The same ball declared as a bound: the union may not prune it.
-template <class T> struct SoftBall : Ball<T> {
-  static constexpr SdfKind kind = SdfKind::bound;
-};
+template <class T> struct SoftBall : Ball<T> { static constexpr SdfKind kind = SdfKind::bound; };
 template <class T> struct Slab { // unbounded: z < h
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
@@ -59,7 +57,8 @@ TYPED_TEST(BvhUnionTest, EqualsTheLinearUnionOnTheSeedsLattice) {
   static_assert(BvhUnion<Ball<T>>::prunes);
   static_assert(is_sdf_v<BvhUnion<Ball<T>>>);
   EXPECT_EQ(u.size(), balls.size());
-  for (const auto& p : test::random_points(Aabb<T>::of({-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2}), 3000)) {
+  for (const auto& p :
+       test::random_points(Aabb<T>::of({-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2}), 3000)) {
     T ref = std::numeric_limits<T>::infinity();
     for (const auto& b : balls) ref = std::min(ref, b(p));
     ASSERT_TRUE(same_bits(u(p), ref)) << p << ": " << u(p) << " vs " << ref;

@@ -29,8 +29,8 @@ template <class T> std::vector<Vec3<T>> probes(const TriangleMesh<T>& m, std::si
   std::mt19937_64 rng(3);
   for (std::size_t t = 0; t < m.triangle_count(); t += 37) {
     const Vec3<T> a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
-    pts.push_back(a);                                            // on a vertex
-    pts.push_back((a + b) * T(0.5));                             // on an edge
+    pts.push_back(a);                                                // on a vertex
+    pts.push_back((a + b) * T(0.5));                                 // on an edge
     pts.push_back((a + b + c) / T(3) + m.face_normals[t] * T(1e-3)); // just outside a face
     pts.push_back((a + b + c) / T(3) - m.face_normals[t] * T(1e-3)); // just inside
   }
@@ -84,9 +84,9 @@ TYPED_TEST(MeshSdfTest, BlockKernelEqualsTheScalarKernelBitForBit) {
     Vec3<T> v[8][3];
     for (int l = 0; l < 8; ++l) {
       v[l][0] = rv(), v[l][1] = rv(), v[l][2] = rv();
-      if (l == 1) v[l][1] = v[l][0];                                     // repeated vertex
-      if (l == 2) v[l][2] = v[l][1] = v[l][0];                           // a point
-      if (l == 3) v[l][2] = v[l][0] + (v[l][1] - v[l][0]) * T(0.25);     // collinear
+      if (l == 1) v[l][1] = v[l][0];                                 // repeated vertex
+      if (l == 2) v[l][2] = v[l][1] = v[l][0];                       // a point
+      if (l == 3) v[l][2] = v[l][0] + (v[l][1] - v[l][0]) * T(0.25); // collinear
       if (l == 4) v[l][2] = v[l][0] + (v[l][1] - v[l][0]) * T(1e-7) + rv() * T(1e-7); // sliver
       blk.set(l, v[l][0], v[l][1], v[l][2]);
     }
@@ -104,14 +104,15 @@ TYPED_TEST(MeshSdfTest, BlockKernelEqualsTheScalarKernelBitForBit) {
 TYPED_TEST(MeshSdfTest, EqualsBruteForceForEveryArityBuilderAndBlockWidth) {
   using T = TypeParam;
   const auto soup = torus<T>();
-  for (auto m : {bvh::BuildMethod::sah_binned, bvh::BuildMethod::median, bvh::BuildMethod::morton}) {
+  for (auto m :
+       {bvh::BuildMethod::sah_binned, bvh::BuildMethod::median, bvh::BuildMethod::morton}) {
     matches_brute_force<T, 2, 4>(soup, m, 1500);
     matches_brute_force<T, 4, 8>(soup, m, 1500);
     matches_brute_force<T, 8, 8>(soup, m, 1500);
     matches_brute_force<T, 4, 1>(soup, m, 500);
   }
-  matches_brute_force<T, 4, 8>(make_icosphere<T>(3, T(0.7)).value(),
-                               bvh::BuildMethod::sah_binned, 2000);
+  matches_brute_force<T, 4, 8>(make_icosphere<T>(3, T(0.7)).value(), bvh::BuildMethod::sah_binned,
+                               2000);
   matches_brute_force<T, 4, 8>(make_cube<T>(T(1)).value(), bvh::BuildMethod::sah_binned, 2000);
 }
 
@@ -196,8 +197,7 @@ TYPED_TEST(MeshSdfTest, RefitAfterVerticesMoveEqualsARebuild) {
   ASSERT_EQ(sdf.refit(soup).code, ErrorCode::ok);
   const auto ref = BruteForceMeshSdf<T>::build(soup).value();
   EXPECT_EQ(sdf.bounds(), ref.bounds());
-  for (const auto& p : probes(ref.mesh(), 1000))
-    ASSERT_TRUE(same_bits(sdf(p), ref(p))) << p;
+  for (const auto& p : probes(ref.mesh(), 1000)) ASSERT_TRUE(same_bits(sdf(p), ref(p))) << p;
   // Different faces are refused.
   EXPECT_EQ(sdf.refit(make_cube<T>(1).value()).code, ErrorCode::invalid_argument);
 }

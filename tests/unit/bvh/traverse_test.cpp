@@ -66,8 +66,8 @@ TYPED_TEST(TraverseTest, PointCloudNearestKNearestAndRadius) {
   const auto pts = cloud<T>(3000, 5);
   const PointCloud<T, 4> pc(pts);
   const PointCloud<T, 8> pc8(pts, 1);
-  for (const auto& q : test::random_points(Aabb<T>::of({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5}), 200,
-                                           11)) {
+  for (const auto& q :
+       test::random_points(Aabb<T>::of({-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5}), 200, 11)) {
     const auto ref = brute_force_nearest(Span<const Vec3<T>>(pts), q);
     const auto got = pc.nearest(q);
     EXPECT_EQ(got.index, ref.index);
