@@ -73,14 +73,14 @@ template <class T> constexpr T shrink_bound(T far2) noexcept {
 
 /// Nearest-first branch and bound (see the file comment). `best2` is in/out: the initial bound and
 /// the final best squared distance the leaf callback reported.
-template <bool Shrink = false, class T, int K, class LeafFn>
-void nearest(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf) noexcept {
+template <bool Shrink = false, class T, int K, class BV, class LeafFn>
+void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf) noexcept {
   if (bvh.root.is_empty()) return;
   if (bvh.root.is_leaf()) {
     if (bvh.box.distance2(p) < best2) leaf(bvh.root.index, bvh.root.count, best2);
     return;
   }
-  FixedStack<Pending<T>, WideBvh<T, K>::stack_capacity> todo;
+  FixedStack<Pending<T>, WideBvh<T, K, BV>::stack_capacity> todo;
   todo.push({bvh.root, T(0)});
   while (!todo.empty()) {
     const Pending<T> top = todo.pop();
@@ -89,7 +89,7 @@ void nearest(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf
       leaf(top.ref.index, top.ref.count, best2);
       continue;
     }
-    const WideNode<T, K>& n = bvh.nodes[top.ref.index];
+    const auto& n = bvh.nodes[top.ref.index];
     T d2[K];
     child_dist2(n, p, d2);
     if constexpr (Shrink) {
@@ -119,11 +119,11 @@ void nearest(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf
 }
 
 /// `nearest` without ordering: children are pushed in storage order (for comparison in bench/).
-template <class T, int K, class LeafFn>
-void nearest_unordered(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2,
+template <class T, int K, class BV, class LeafFn>
+void nearest_unordered(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2,
                        LeafFn&& leaf) noexcept {
   if (bvh.root.is_empty()) return;
-  FixedStack<Pending<T>, WideBvh<T, K>::stack_capacity> todo;
+  FixedStack<Pending<T>, WideBvh<T, K, BV>::stack_capacity> todo;
   todo.push({bvh.root, bvh.box.distance2(p)});
   while (!todo.empty()) {
     const Pending<T> top = todo.pop();
@@ -132,7 +132,7 @@ void nearest_unordered(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2,
       leaf(top.ref.index, top.ref.count, best2);
       continue;
     }
-    const WideNode<T, K>& n = bvh.nodes[top.ref.index];
+    const auto& n = bvh.nodes[top.ref.index];
     T d2[K];
     child_dist2(n, p, d2);
     for (int k = 0; k < K; ++k)
@@ -141,14 +141,14 @@ void nearest_unordered(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2,
 }
 
 namespace detail {
-template <class T, int K, class LeafFn>
-void nearest_recursive_at(const WideBvh<T, K>& bvh, const ChildRef ref, const Vec3<T>& p, T& best2,
-                          LeafFn& leaf) noexcept {
+template <class T, int K, class BV, class LeafFn>
+void nearest_recursive_at(const WideBvh<T, K, BV>& bvh, const ChildRef ref, const Vec3<T>& p,
+                          T& best2, LeafFn& leaf) noexcept {
   if (ref.is_leaf()) {
     leaf(ref.index, ref.count, best2);
     return;
   }
-  const WideNode<T, K>& n = bvh.nodes[ref.index];
+  const auto& n = bvh.nodes[ref.index];
   T d2[K];
   child_dist2(n, p, d2);
   int order[K];
@@ -160,8 +160,8 @@ void nearest_recursive_at(const WideBvh<T, K>& bvh, const ChildRef ref, const Ve
 } // namespace detail
 
 /// `nearest` by recursion, nearest child first (the seeds' recursive variant; for bench/).
-template <class T, int K, class LeafFn>
-void nearest_recursive(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2,
+template <class T, int K, class BV, class LeafFn>
+void nearest_recursive(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2,
                        LeafFn&& leaf) noexcept {
   if (bvh.root.is_empty() || !(bvh.box.distance2(p) < best2)) return;
   detail::nearest_recursive_at(bvh, bvh.root, p, best2, leaf);
@@ -169,20 +169,20 @@ void nearest_recursive(const WideBvh<T, K>& bvh, const Vec3<T>& p, T& best2,
 
 /// Calls `leaf(first, count)` for every leaf all of whose ancestors' boxes, and its own, satisfy
 /// `keep(box)`. `leaf` returns false to stop the whole traversal early. Depth first.
-template <class T, int K, class KeepFn, class LeafFn>
-void for_each_leaf_if(const WideBvh<T, K>& bvh, KeepFn&& keep, LeafFn&& leaf) {
+template <class T, int K, class BV, class KeepFn, class LeafFn>
+void for_each_leaf_if(const WideBvh<T, K, BV>& bvh, KeepFn&& keep, LeafFn&& leaf) {
   if (bvh.root.is_empty() || !keep(bvh.box)) return;
   if (bvh.root.is_leaf()) {
     leaf(bvh.root.index, bvh.root.count);
     return;
   }
-  FixedStack<std::uint32_t, WideBvh<T, K>::stack_capacity> todo;
+  FixedStack<std::uint32_t, WideBvh<T, K, BV>::stack_capacity> todo;
   todo.push(bvh.root.index);
   while (!todo.empty()) {
-    const WideNode<T, K>& n = bvh.nodes[todo.pop()];
+    const auto& n = bvh.nodes[todo.pop()];
     for (int k = K - 1; k >= 0; --k) {
       const ChildRef r = n.child[k];
-      if (r.is_empty() || !keep(n.child_box(k))) continue;
+      if (r.is_empty() || !keep(n.child_bv(k))) continue;
       if (r.is_leaf()) {
         if (!leaf(r.index, r.count)) return;
       } else {
@@ -194,10 +194,10 @@ void for_each_leaf_if(const WideBvh<T, K>& bvh, KeepFn&& keep, LeafFn&& leaf) {
 
 /// Calls `fn(slot)` for every primitive slot in a leaf whose box overlaps `region` (a superset of
 /// the primitives that overlap it: test the primitive itself in `fn` when that matters).
-template <class T, int K, class Fn>
-void for_each_overlapping(const WideBvh<T, K>& bvh, const Aabb<T>& region, Fn&& fn) {
+template <class T, int K, class BV, class Fn>
+void for_each_overlapping(const WideBvh<T, K, BV>& bvh, const Aabb<T>& region, Fn&& fn) {
   for_each_leaf_if(
-      bvh, [&](const Aabb<T>& b) { return b.overlaps(region); },
+      bvh, [&](const auto& b) { return b.overlaps(region); },
       [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t s = first; s < first + count; ++s) fn(s);
         return true;
@@ -205,11 +205,11 @@ void for_each_overlapping(const WideBvh<T, K>& bvh, const Aabb<T>& region, Fn&& 
 }
 
 /// Calls `fn(slot)` for every primitive slot in a leaf whose box is within `radius` of `p`.
-template <class T, int K, class Fn>
-void for_each_within(const WideBvh<T, K>& bvh, const Vec3<T>& p, T radius, Fn&& fn) {
+template <class T, int K, class BV, class Fn>
+void for_each_within(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T radius, Fn&& fn) {
   const T r2 = radius * radius;
   for_each_leaf_if(
-      bvh, [&](const Aabb<T>& b) { return b.distance2(p) <= r2; },
+      bvh, [&](const auto& b) { return b.distance2(p) <= r2; },
       [&](std::uint32_t first, std::uint32_t count) {
         for (std::uint32_t s = first; s < first + count; ++s) fn(s);
         return true;
@@ -235,9 +235,9 @@ struct SlotKey {
 /// primitive itself, >= the distance to its box) is at most `max_dist2`, sorted by distance then
 /// by `key(slot)` (e.g. the input index). Exact: equal to sorting all primitives that way and
 /// keeping the first k.
-template <class T, int K, class Dist2Fn, class KeyFn = SlotKey>
+template <class T, int K, class BV, class Dist2Fn, class KeyFn = SlotKey>
 std::vector<Neighbour<T>>
-k_nearest(const WideBvh<T, K>& bvh, const Vec3<T>& p, std::size_t k, Dist2Fn&& dist2,
+k_nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, std::size_t k, Dist2Fn&& dist2,
           T max_dist2 = std::numeric_limits<T>::infinity(), KeyFn&& key = {}) {
   std::vector<Neighbour<T>> heap; // max-heap on (dist2, key)
   if (k == 0) return heap;

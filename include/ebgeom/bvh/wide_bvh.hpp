@@ -6,6 +6,7 @@
 /// `refit` recomputes every box after primitives move (same topology).
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "ebgeom/bvh/build.hpp"
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
+#include "ebgeom/core/sphere.hpp"
 #include "ebgeom/core/vec.hpp"
 
 namespace ebgeom::bvh {
@@ -33,11 +35,16 @@ struct ChildRef {
   constexpr bool is_empty() const noexcept { return count == 0 && index == none; }
 };
 
-/// K-wide node: the K child boxes as structure of arrays, then the K child references. An empty
-/// slot has an empty box (lo = +inf, hi = -inf), so its distance from any point is +inf and no
-/// traversal enters it. Size: 6·K·sizeof(T) + 8·K bytes (K = 4, float: 128 B, two cache lines).
-template <class T, int K> struct WideNode {
+/// K-wide node with bounding volume `BV` per child, stored structure of arrays so one loop bounds
+/// all children. Specialised for `Aabb<T>` (the default) and `BoundingSphere<T>`.
+template <class T, int K, class BV = Aabb<T>> struct WideNode;
+
+/// K-wide box node: the K child boxes as structure of arrays, then the K child references. An
+/// empty slot has an empty box (lo = +inf, hi = -inf), so its distance from any point is +inf and
+/// no traversal enters it. Size: 6·K·sizeof(T) + 8·K bytes (K = 4, float: 128 B, two cache lines).
+template <class T, int K> struct WideNode<T, K, Aabb<T>> {
   static_assert(K >= 2 && K <= 16, "WideNode<T, K> needs 2 <= K <= 16");
+  using bv_type = Aabb<T>;
   T lo_x[K], lo_y[K], lo_z[K], hi_x[K], hi_y[K], hi_z[K];
   ChildRef child[K];
 
@@ -48,6 +55,8 @@ template <class T, int K> struct WideNode {
     lo_x[k] = b.lo.x, lo_y[k] = b.lo.y, lo_z[k] = b.lo.z;
     hi_x[k] = b.hi.x, hi_y[k] = b.hi.y, hi_z[k] = b.hi.z;
   }
+  Aabb<T> child_bv(int k) const noexcept { return child_box(k); }
+  void set_child_bv(int k, const Aabb<T>& b) noexcept { set_child_box(k, b); }
   /// Union of the child boxes.
   Aabb<T> bounds() const noexcept {
     Aabb<T> b;
@@ -56,6 +65,60 @@ template <class T, int K> struct WideNode {
     return b;
   }
 };
+
+/// K-wide sphere node: centres and radii structure of arrays. An empty slot has its centre at
+/// +inf, so its distance is +inf. Size: 4·K·sizeof(T) + 8·K bytes (K = 4, float: 96 B).
+template <class T, int K> struct WideNode<T, K, BoundingSphere<T>> {
+  static_assert(K >= 2 && K <= 16, "WideNode<T, K> needs 2 <= K <= 16");
+  using bv_type = BoundingSphere<T>;
+  T cx[K], cy[K], cz[K], r[K];
+  ChildRef child[K];
+
+  BoundingSphere<T> child_bv(int k) const noexcept {
+    if (!std::isfinite(cx[k])) return BoundingSphere<T>::empty();
+    return {{cx[k], cy[k], cz[k]}, r[k]};
+  }
+  void set_child_bv(int k, const BoundingSphere<T>& s) noexcept {
+    const T c = s.is_empty() ? std::numeric_limits<T>::infinity() : T(0);
+    cx[k] = s.is_empty() ? c : s.center.x, cy[k] = s.is_empty() ? c : s.center.y;
+    cz[k] = s.is_empty() ? c : s.center.z, r[k] = s.is_empty() ? T(0) : s.radius;
+  }
+  /// Box of child `k`'s sphere.
+  Aabb<T> child_box(int k) const noexcept { return child_bv(k).bounds(); }
+  /// Sphere enclosing the child spheres.
+  BoundingSphere<T> bounds() const noexcept {
+    BoundingSphere<T> b;
+    for (int k = 0; k < K; ++k)
+      if (!child[k].is_empty()) b = merge(b, child_bv(k));
+    return b;
+  }
+};
+
+/// The box of a bounding volume.
+template <class T> Aabb<T> to_box(const Aabb<T>& b) noexcept { return b; }
+template <class T> Aabb<T> to_box(const BoundingSphere<T>& s) noexcept { return s.bounds(); }
+
+/// Squared distances from `p` to the K child spheres of `n` (0 inside, +inf for empty slots).
+template <class T, int K>
+EBGEOM_FORCE_INLINE void child_dist2(const WideNode<T, K, BoundingSphere<T>>& n, const Vec3<T>& p,
+                                     T (&d2)[K]) noexcept {
+  for (int k = 0; k < K; ++k) {
+    const T dx = p.x - n.cx[k], dy = p.y - n.cy[k], dz = p.z - n.cz[k];
+    const T d = std::max(std::sqrt(dx * dx + dy * dy + dz * dz) - n.r[k], T(0));
+    d2[k] = d * d;
+  }
+}
+
+/// Squared distances from `p` to the farthest point of each child sphere (+inf for empty slots).
+template <class T, int K>
+EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<T, K, BoundingSphere<T>>& n,
+                                         const Vec3<T>& p, T (&d2)[K]) noexcept {
+  for (int k = 0; k < K; ++k) {
+    const T dx = p.x - n.cx[k], dy = p.y - n.cy[k], dz = p.z - n.cz[k];
+    const T d = std::sqrt(dx * dx + dy * dy + dz * dz) + n.r[k];
+    d2[k] = d * d;
+  }
+}
 
 /// Squared distances from `p` to the K child boxes of `n` (0 inside, +inf for empty slots).
 /// Branch-free: compiles to K-wide min/max.
@@ -85,7 +148,7 @@ EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<T, K>& n, const Vec3<T>&
 /// The compact BVH. `root` is an inner reference to `nodes[0]`, or a leaf when all primitives fit
 /// in one leaf, or empty for zero primitives. `prim[slot]` is the input index of the primitive in
 /// leaf slot `slot`. Immutable after construction: concurrent queries are safe.
-template <class T, int K> struct WideBvh {
+template <class T, int K, class BV = Aabb<T>> struct WideBvh {
   static_assert(K >= 2 && K <= 16, "WideBvh<T, K> needs 2 <= K <= 16");
   using scalar_type = T;
   static constexpr int arity = K;
@@ -95,23 +158,27 @@ template <class T, int K> struct WideBvh {
   /// Entries a nearest-first traversal stack can hold at most: (K - 1) per level, plus one.
   static constexpr int stack_capacity = max_depth * (K - 1) + 1;
 
-  std::vector<WideNode<T, K>> nodes;
+  using bv_type = BV;
+  using node_type = WideNode<T, K, BV>;
+
+  std::vector<node_type> nodes;
   std::vector<std::uint32_t> prim;
   ChildRef root;
-  Aabb<T> box;   ///< bounds of everything
+  Aabb<T> box;   ///< box of everything
   int depth = 0; ///< node levels (0 when the root is a leaf or empty)
 
   std::size_t size() const noexcept { return prim.size(); }
   bool empty() const noexcept { return prim.empty(); }
   std::size_t memory_bytes() const noexcept {
-    return nodes.size() * sizeof(WideNode<T, K>) + prim.size() * sizeof(std::uint32_t);
+    return nodes.size() * sizeof(node_type) + prim.size() * sizeof(std::uint32_t);
   }
 };
 
 namespace detail {
-template <class T, int K> struct Flattener {
+template <class T, int K, class BV> struct Flattener {
   const BuildTree<T>& tree;
-  WideBvh<T, K>& out;
+  const std::vector<BV>& bv; // per builder node
+  WideBvh<T, K, BV>& out;
 
   ChildRef ref_of(std::uint32_t b, int level) {
     const BuildNode<T>& n = tree.nodes[b];
@@ -147,19 +214,16 @@ template <class T, int K> struct Flattener {
     const std::uint32_t index = std::uint32_t(out.nodes.size());
     out.nodes.emplace_back();
     out.depth = std::max(out.depth, level + 1);
-    {
-      WideNode<T, K>& w = out.nodes[index];
-      for (int k = 0; k < K; ++k) {
-        w.set_child_box(k, Aabb<T>());
-        w.child[k] = ChildRef{};
-      }
+    for (int k = 0; k < K; ++k) {
+      out.nodes[index].set_child_bv(k, BV());
+      out.nodes[index].child[k] = ChildRef{};
     }
     if (kids.size() <= std::size_t(K)) {
       for (std::size_t k = 0; k < kids.size(); ++k) {
         const ChildRef r = ref_of(kids[k], level + 1);
-        WideNode<T, K>& w = out.nodes[index]; // `out.nodes` may have grown
+        auto& w = out.nodes[index]; // `out.nodes` may have grown
         w.child[k] = r;
-        w.set_child_box(int(k), tree.nodes[kids[k]].box);
+        w.set_child_bv(int(k), bv[kids[k]]);
       }
       return ChildRef::inner(index);
     }
@@ -168,30 +232,60 @@ template <class T, int K> struct Flattener {
     for (int g = 0; g < K; ++g) {
       const std::size_t a = kids.size() * std::size_t(g) / K, b = kids.size() * (g + 1) / K;
       if (a == b) continue;
-      Aabb<T> box;
-      for (std::size_t i = a; i < b; ++i) box.extend(tree.nodes[kids[i]].box);
+      BV group;
+      for (std::size_t i = a; i < b; ++i) group = merge(group, bv[kids[i]]);
       const ChildRef r = b - a == 1
                              ? ref_of(kids[a], level + 1)
                              : emit(std::vector<std::uint32_t>(kids.begin() + std::ptrdiff_t(a),
                                                                kids.begin() + std::ptrdiff_t(b)),
                                     level + 1);
-      WideNode<T, K>& w = out.nodes[index];
+      auto& w = out.nodes[index];
       w.child[g] = r;
-      w.set_child_box(g, box);
+      w.set_child_bv(g, group);
     }
     return ChildRef::inner(index);
   }
 };
 } // namespace detail
 
-/// Collapses a builder tree into the compact K-wide form. O(nodes · K).
+/// Collapses a builder tree into the compact K-wide form with bounding volumes `BV` (the seeds'
+/// pluggable bounding volumes): `leaf_bv(first, count)` gives the volume of leaf slots
+/// [first, first + count); inner volumes are `merge`s of their children's. O(nodes · K).
+template <int K, class BV, class T, class LeafBv>
+WideBvh<T, K, BV> flatten(const BuildTree<T>& tree, const LeafBv& leaf_bv) {
+  WideBvh<T, K, BV> out;
+  out.prim = tree.prim;
+  if (tree.empty()) return out;
+  out.box = tree.nodes[0].box;
+  // Builder children always have larger indices than their parent: one reverse pass.
+  std::vector<BV> bv(tree.nodes.size());
+  for (std::size_t i = tree.nodes.size(); i-- > 0;) {
+    const BuildNode<T>& n = tree.nodes[i];
+    if (n.is_leaf()) {
+      bv[i] = leaf_bv(n.first, n.count);
+    } else {
+      BV b;
+      for (std::uint32_t c = n.first; c < n.first + n.children; ++c) b = merge(b, bv[c]);
+      bv[i] = b;
+    }
+  }
+  out.nodes.reserve(tree.nodes.size() / 2 + 1);
+  detail::Flattener<T, K, BV> f{tree, bv, out};
+  out.root = f.ref_of(0, 0);
+  EBGEOM_ASSERT((out.depth <= WideBvh<T, K, BV>::max_depth));
+  return out;
+}
+
+/// Collapses a builder tree into the compact K-wide form with boxes (the builder's own).
 template <int K, class T> WideBvh<T, K> flatten(const BuildTree<T>& tree) {
   WideBvh<T, K> out;
   out.prim = tree.prim;
   if (tree.empty()) return out;
   out.box = tree.nodes[0].box;
+  std::vector<Aabb<T>> bv(tree.nodes.size());
+  for (std::size_t i = 0; i < bv.size(); ++i) bv[i] = tree.nodes[i].box;
   out.nodes.reserve(tree.nodes.size() / 2 + 1);
-  detail::Flattener<T, K> f{tree, out};
+  detail::Flattener<T, K, Aabb<T>> f{tree, bv, out};
   out.root = f.ref_of(0, 0);
   EBGEOM_ASSERT((out.depth <= WideBvh<T, K>::max_depth));
   return out;
@@ -204,24 +298,26 @@ WideBvh<T, K> build_wide(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroid
   return flatten<K>(build(boxes, centroids, options));
 }
 
-/// Recomputes every box of `bvh` after its primitives moved (same primitives, same leaves).
-/// `leaf_box(first, count)` returns the box of leaf slots [first, first + count). O(nodes · K).
-template <class T, int K, class LeafBox> void refit(WideBvh<T, K>& bvh, const LeafBox& leaf_box) {
+/// Recomputes every bounding volume of `bvh` after its primitives moved (same primitives, same
+/// leaves). `leaf_bv(first, count)` returns the volume of leaf slots [first, first + count).
+/// O(nodes · K).
+template <class T, int K, class BV, class LeafBv>
+void refit(WideBvh<T, K, BV>& bvh, const LeafBv& leaf_bv) {
   // Pre-order layout: every child node has a larger index than its parent.
   for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
-    WideNode<T, K>& n = bvh.nodes[i];
+    auto& n = bvh.nodes[i];
     for (int k = 0; k < K; ++k) {
       const ChildRef r = n.child[k];
       if (r.is_leaf())
-        n.set_child_box(k, leaf_box(r.index, r.count));
+        n.set_child_bv(k, leaf_bv(r.index, r.count));
       else if (r.is_inner())
-        n.set_child_box(k, bvh.nodes[r.index].bounds());
+        n.set_child_bv(k, bvh.nodes[r.index].bounds());
     }
   }
   if (bvh.root.is_leaf())
-    bvh.box = leaf_box(bvh.root.index, bvh.root.count);
+    bvh.box = to_box(BV(leaf_bv(bvh.root.index, bvh.root.count)));
   else if (bvh.root.is_inner())
-    bvh.box = bvh.nodes[bvh.root.index].bounds();
+    bvh.box = to_box(bvh.nodes[bvh.root.index].bounds());
 }
 
 } // namespace ebgeom::bvh

@@ -147,3 +147,49 @@ TYPED_TEST(TraverseTest, OverlapAndRadiusVisitorsFindEveryCandidate) {
       [&](std::uint32_t, std::uint32_t) { return ++leaves < 1; });
   EXPECT_EQ(leaves, 1);
 }
+
+TYPED_TEST(TraverseTest, SphereBoundingVolumesGiveTheSameNearestAndVisits) {
+  using T = TypeParam;
+  const auto pts = cloud<T>(1500, 21);
+  std::vector<Aabb<T>> boxes;
+  for (const auto& p : pts) boxes.push_back(Aabb<T>::of(p).grown(T(0.01)));
+  std::vector<Vec3<T>> cent;
+  for (const auto& b : boxes) cent.push_back(b.center());
+  const auto tree = build(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(cent));
+  const auto w = flatten<4, BoundingSphere<T>>(tree, [&](std::uint32_t first, std::uint32_t n) {
+    std::vector<Aabb<T>> mine;
+    for (std::uint32_t s = first; s < first + n; ++s) mine.push_back(boxes[tree.prim[s]]);
+    return BoundingSphere<T>::of_boxes(Span<const Aabb<T>>(mine));
+  });
+  for (const auto& q : test::random_points(Aabb<T>::of({-2, -2, -2}, {2, 2, 2}), 300, 4)) {
+    const auto ref = brute_force_nearest(Span<const Vec3<T>>(pts), q);
+    T best2 = std::numeric_limits<T>::infinity();
+    nearest<true>(w, q, best2, [&](std::uint32_t first, std::uint32_t count, T& b2) {
+      for (std::uint32_t s = first; s < first + count; ++s)
+        b2 = std::min(b2, norm2(pts[w.prim[s]] - q));
+    });
+    EXPECT_EQ(best2, ref.dist2);
+    // Within a radius: every point within 0.3 is reported (sphere pruning is conservative).
+    std::size_t n = 0, m = 0;
+    for_each_within(w, q, T(0.3),
+                    [&](std::uint32_t s) { n += norm2(pts[w.prim[s]] - q) <= T(0.09); });
+    for (const auto& p : pts) m += norm2(p - q) <= T(0.09);
+    EXPECT_EQ(n, m);
+  }
+  // Refit with spheres: after moving every point, the tree still finds the nearest.
+  auto moved = pts;
+  for (auto& p : moved) p = p * T(2) + Vec3<T>{1, 0, 0};
+  auto w2 = w;
+  refit(w2, [&](std::uint32_t first, std::uint32_t n) {
+    std::vector<Vec3<T>> mine;
+    for (std::uint32_t s = first; s < first + n; ++s) mine.push_back(moved[w2.prim[s]]);
+    return BoundingSphere<T>::of_points(Span<const Vec3<T>>(mine));
+  });
+  const Vec3<T> q{T(0.3), T(0.2), T(-0.1)};
+  T best2 = std::numeric_limits<T>::infinity();
+  nearest(w2, q, best2, [&](std::uint32_t first, std::uint32_t count, T& b2) {
+    for (std::uint32_t s = first; s < first + count; ++s)
+      b2 = std::min(b2, norm2(moved[w2.prim[s]] - q));
+  });
+  EXPECT_EQ(best2, brute_force_nearest(Span<const Vec3<T>>(moved), q).dist2);
+}
