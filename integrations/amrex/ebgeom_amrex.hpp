@@ -3,45 +3,85 @@
 /// ebgeom SDFs as AMReX EB2 implicit functions.
 ///
 /// ```cpp
-/// auto sdf = ...;                                   // any ebgeom SDF: mesh, analytic, CSG
-/// ebgeom::AmrexImplicitFunction<decltype(sdf)> f(sdf);   // fluid outside the object
-/// auto gshop = amrex::EB2::makeShop(f);
-/// amrex::EB2::Build(gshop, geom, max_level, max_level);
+/// #include <AMReX_EB2.H>
+/// #include "ebgeom_amrex.hpp"
+///
+/// auto mesh = ebgeom::read_shared_mesh_sdf<double>("part.stl").value();  // built once
+/// ebgeom::AmrexImplicitFunction<ebgeom::MeshSdf<double>> f(mesh);         // fluid outside
+/// auto gshop = amrex::EB2::makeShop(f);                                   // copies f: cheap
+/// amrex::EB2::Build(gshop, geom, required_coarsening_level, max_coarsening_level);
 /// ```
-/// AMReX reads value < 0 as fluid. The adapter returns -S when the fluid is outside the object
-/// (default) and +S when it is inside (`EbOptions::fluid`). In 2D builds (AMREX_SPACEDIM == 2) it
-/// evaluates the plane z = `EbOptions::z_slice`. Copies share the geometry (AMReX copies implicit
-/// functions by value), and concurrent calls are thread-safe. All logic lives in
-/// `ebgeom/adapters/eb_function.hpp`, which is unit-tested without AMReX.
+/// Any ebgeom SDF works (mesh, analytic shape, CSG tree, `BvhUnion`, `AnySdf`).
+///
+/// - Sign: AMReX reads value > 0 as body, = 0 as boundary, < 0 as fluid. The adapter returns -S
+///   when the fluid is outside the object (`FluidSide::outside`, the default) and +S when it is
+///   inside (`EbOptions::fluid = FluidSide::inside`), where S < 0 inside the object.
+/// - 2D (AMREX_SPACEDIM == 2): AMReX passes (x, y); the adapter evaluates the 3D SDF at
+///   (x, y, `EbOptions::z_slice`).
+/// - Copies share the geometry (AMReX stores implicit functions by value in the GeometryShop and
+///   copies them): one shared pointer, no copy of a mesh or its BVH.
+/// - Thread safety: `const` calls from any number of threads (AMReX's OpenMP tiles) are safe.
+/// - GPU builds: the adapter does not derive from `amrex::GPUable` (it holds a host pointer), so
+///   AMReX evaluates it on the host. Build the EB once; it is not on the time-step path.
+///
+/// All logic lives in `ebgeom/adapters/eb_function.hpp`, which is unit-tested without AMReX; this
+/// header only maps AMReX's types onto it.
+
+// ebgeom first: its headers must not see macros from the EB code.
+#include <memory>
+#include <utility>
+
+#include "ebgeom/adapters/eb_function.hpp"
 
 #include <AMReX_Array.H>
 #include <AMReX_REAL.H>
 #include <AMReX_SPACE.H>
 
-#include <utility>
-
-#include "ebgeom/adapters/eb_function.hpp"
+#if !defined(AMREX_SPACEDIM) || (AMREX_SPACEDIM != 2 && AMREX_SPACEDIM != 3)
+#error "ebgeom_amrex.hpp: AMReX must be built for 2 or 3 dimensions (AMREX_SPACEDIM)"
+#endif
 
 namespace ebgeom {
 
-/// AMReX EB2 implicit function over the ebgeom SDF `S`.
+/// AMReX EB2 implicit function over the ebgeom SDF `S` (see the file comment for the contract).
 template <class S> class AmrexImplicitFunction {
  public:
+  using sdf_type = S;
+
+  /// Takes the geometry by value (moved into shared storage).
   explicit AmrexImplicitFunction(S sdf, const EbOptions& opt = {}) : f_(std::move(sdf), opt) {}
+  /// Shares a geometry built once (e.g. `read_shared_mesh_sdf`). Precondition: not null.
+  explicit AmrexImplicitFunction(std::shared_ptr<const S> sdf, const EbOptions& opt = {})
+      : f_(std::move(sdf), opt) {}
   explicit AmrexImplicitFunction(EbFunction<S> f) : f_(std::move(f)) {}
 
+  /// The EB2 implicit function: < 0 fluid, > 0 body.
   ::amrex::Real operator()(AMREX_D_DECL(::amrex::Real x, ::amrex::Real y,
                                         ::amrex::Real z)) const noexcept {
     return f_(AMREX_D_DECL(x, y, z));
   }
+  /// The same at a point given as an array (AMReX calls both forms).
   ::amrex::Real operator()(const ::amrex::RealArray& p) const noexcept {
     return f_(AMREX_D_DECL(p[0], p[1], p[2]));
   }
 
+  /// The plain C++ adapter (sign, slice, shared geometry).
   const EbFunction<S>& function() const noexcept { return f_; }
 
  private:
   EbFunction<S> f_;
 };
+
+/// `AmrexImplicitFunction` over `sdf`, deducing `S`.
+template <class S>
+AmrexImplicitFunction<S> make_amrex_implicit_function(S sdf, const EbOptions& opt = {}) {
+  return AmrexImplicitFunction<S>(std::move(sdf), opt);
+}
+/// `AmrexImplicitFunction` sharing `sdf` (not null), deducing `S`.
+template <class S>
+AmrexImplicitFunction<S> make_amrex_implicit_function(std::shared_ptr<const S> sdf,
+                                                      const EbOptions& opt = {}) {
+  return AmrexImplicitFunction<S>(std::move(sdf), opt);
+}
 
 } // namespace ebgeom
