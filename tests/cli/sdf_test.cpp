@@ -313,8 +313,8 @@ TEST(SdfErrors, BadSceneValuesNameTheirJsonPointer) {
       {R"({"type": "box", "size": [1, 2]})", "/size: expected an array of 3 numbers"},
       {R"({"type": "union", "children": []})", "/children: expected a non-empty array"},
       {R"({"type": "mesh", "path": "missing.stl"})", "/path: mesh file"},
-      {R"({"type": "mesh", "generate": "icosphere", "sign": "winding"})",
-       "/sign: sign mode 'winding' is not available yet"},
+      {R"({"type": "mesh", "generate": "icosphere", "sign": "windy"})",
+       "/sign: unknown sign mode 'windy'"},
       {R"({"type": "sphere", "radius": 1, "rotate": {"axis": [0, 0, 0], "degrees": 3}})",
        "/rotate/axis: the rotation axis must not be zero"},
       {R"([1, 2])", "expected a node object"},
@@ -335,7 +335,6 @@ TEST(SdfErrors, UsageErrors) {
   const std::string in = "sdf '" + dir + "/s.json' ";
   const char* bad[] = {
       "-o x.txt",                         // unknown output extension
-      "-o x.npy --sign winding",          // not yet available
       "-o x.npy --sign bogus",            // unknown
       "-o x.npy --res 4 4",               // two numbers
       "-o x.npy --res 4 --dx 0.1",        // exclusive
@@ -351,8 +350,8 @@ TEST(SdfErrors, UsageErrors) {
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("ebgeom: error: ", 0), 0u) << args << "\n" << r.err;
   }
-  const RunResult w = run(in + "-o x.npy --sign winding");
-  EXPECT_NE(w.err.find("not available yet"), std::string::npos) << w.err;
+  const RunResult w = run(in + "-o x.npy --sign bogus");
+  EXPECT_NE(w.err.find("unknown sign mode 'bogus'"), std::string::npos) << w.err;
 }
 
 TEST(SdfErrors, UnwritableOutputLeavesNothingBehind) {

@@ -26,6 +26,7 @@ int run_info(const InfoOptions& o) {
   const bool watertight = r.boundary_edges.empty() && r.non_manifold_edges.empty();
   const bool oriented = r.inconsistent_edges.empty();
   const Aabb<double>& b = r.bounds;
+  const SignChoice auto_sign = choose_sign_mode(r);
   if (o.json) {
     Json j;
     j["input"] = o.input;
@@ -55,6 +56,7 @@ int run_info(const InfoOptions& o) {
       j["bbox"] = {{"lo", {b.lo.x, b.lo.y, b.lo.z}}, {"hi", {b.hi.x, b.hi.y, b.hi.z}}};
     j["sdf_well_defined"] = r.sdf_well_defined;
     j["verdict"] = r.verdict;
+    j["auto_sign"] = {{"mode", sign_name(auto_sign.mode)}, {"reason", auto_sign.reason}};
     std::printf("%s\n", j.dump(2).c_str());
     return exit_ok;
   }
@@ -74,6 +76,8 @@ int run_info(const InfoOptions& o) {
   std::printf("  degenerate faces %zu, duplicate faces %zu, isolated vertices %zu\n",
               r.degenerate_faces.count, r.duplicate_faces.count, r.isolated_vertices.count);
   std::printf("  %s\n", r.verdict.c_str());
+  std::printf("  --sign auto would use %s: %s\n", sign_name(auto_sign.mode),
+              auto_sign.reason.c_str());
   return exit_ok;
 }
 

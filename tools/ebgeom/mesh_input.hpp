@@ -8,21 +8,50 @@
 #include "common.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
-#include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
 
 #include "ebgeom/io/read_mesh.hpp"
-
-#if __has_include("ebgeom/sdf/mesh_sdf.hpp")
 #include "ebgeom/sdf/mesh_sdf.hpp"
+#include "ebgeom/sdf/signed_mesh_sdf.hpp"
+
 #define EBGEOM_CLI_HAS_BVH 1
-#else
-#define EBGEOM_CLI_HAS_BVH 0
-#endif
 
 namespace ebgeom::cli {
 
-/// The mesh SDF the CLI uses: the BVH-accelerated `MeshSdf<T>` when this build has it, otherwise
-/// the brute-force one. Keeps the `TriangleMesh` for normals. Immutable; thread-safe queries.
+/// How the sign of a mesh SDF is decided (`--sign`, scene key "sign"): the library's
+/// `ebgeom::SignMode` (sdf/signed_mesh_sdf.hpp).
+using ebgeom::SignMode;
+
+/// Parses a --sign / "sign" value: pseudonormal, winding, fast-winding, unsigned or auto.
+/// Throws CliError(`code`) prefixed by `where`.
+inline SignMode parse_sign_mode(const std::string& s, int code, const std::string& where) {
+  if (s == "pseudonormal") return SignMode::pseudonormal;
+  if (s == "winding") return SignMode::winding;
+  if (s == "fast-winding") return SignMode::fast_winding;
+  if (s == "unsigned") return SignMode::unsigned_distance;
+  if (s == "auto") return SignMode::automatic;
+  fail(code, where + ": unknown sign mode '" + s +
+                 "' (expected pseudonormal, winding, fast-winding, unsigned or auto)");
+}
+
+/// The CLI spelling of a mode (the inverse of `parse_sign_mode`).
+inline const char* sign_name(SignMode m) noexcept {
+  switch (m) {
+  case SignMode::pseudonormal:
+    return "pseudonormal";
+  case SignMode::winding:
+    return "winding";
+  case SignMode::fast_winding:
+    return "fast-winding";
+  case SignMode::unsigned_distance:
+    return "unsigned";
+  case SignMode::automatic:
+    return "auto";
+  }
+  return "?";
+}
+
+/// The mesh SDF the CLI uses: `SignedMeshSdf<T>` (the BVH `MeshSdf<T>`'s exact distance with the
+/// chosen sign mode). Keeps the `TriangleMesh` for normals. Immutable; thread-safe queries.
 template <class T> class CliMeshSdf {
  public:
   using scalar_type = T;
@@ -35,18 +64,15 @@ template <class T> class CliMeshSdf {
     Index triangle;
   };
 
-  static Result<CliMeshSdf> build(const PolygonSoup<T>& soup) {
-    Result<TriangleMesh<T>> m = make_triangle_mesh(soup);
-    if (!m) return m.error();
-    CliMeshSdf s;
-#if EBGEOM_CLI_HAS_BVH
-    auto sdf = MeshSdf<T>::make(*m);
+  /// `sign = automatic` validates `soup` and picks pseudonormal or fast winding.
+  static Result<CliMeshSdf> build(const PolygonSoup<T>& soup, SignMode sign = SignMode::automatic) {
+    SignOptions opt;
+    opt.mode = sign;
+    auto sdf = SignedMeshSdf<T>::build(soup, opt);
     if (!sdf) return sdf.error();
-    s.sdf_ = std::make_shared<const MeshSdf<T>>(std::move(*sdf));
-#else
-    s.sdf_ = std::make_shared<const BruteForceMeshSdf<T>>(*m);
-#endif
-    s.mesh_ = std::make_shared<const TriangleMesh<T>>(std::move(*m));
+    CliMeshSdf s;
+    s.requested_ = sign;
+    s.sdf_ = std::make_shared<const SignedMeshSdf<T>>(std::move(*sdf));
     return s;
   }
 
@@ -56,26 +82,24 @@ template <class T> class CliMeshSdf {
     const auto h = sdf_->closest(p);
     return {h.distance, h.point, h.triangle};
   }
-  const TriangleMesh<T>& mesh() const noexcept { return *mesh_; }
-  /// "bvh" or "brute force".
-  static const char* method() noexcept { return EBGEOM_CLI_HAS_BVH ? "bvh" : "brute force"; }
+  const TriangleMesh<T>& mesh() const noexcept { return sdf_->mesh(); }
+  /// The mode asked for, the mode used (never automatic) and why ("requested" unless automatic).
+  SignMode requested_sign() const noexcept { return requested_; }
+  SignMode sign() const noexcept { return sdf_->resolved_mode(); }
+  const std::string& sign_reason() const noexcept { return sdf_->reason(); }
+  /// `exact` with the pseudonormal sign; `implicit` otherwise: unsigned, or a winding sign, which
+  /// changes across the w = 1/2 surface (filling holes) as well as across the mesh, so the grid
+  /// sampler must not propagate signs between far samples or skip far blocks.
+  SdfKind sign_kind() const noexcept {
+    return sign() == SignMode::pseudonormal ? SdfKind::exact : SdfKind::implicit;
+  }
+  /// "bvh".
+  static const char* method() noexcept { return "bvh"; }
 
  private:
-  std::shared_ptr<const TriangleMesh<T>> mesh_;
-#if EBGEOM_CLI_HAS_BVH
-  std::shared_ptr<const MeshSdf<T>> sdf_;
-#else
-  std::shared_ptr<const BruteForceMeshSdf<T>> sdf_;
-#endif
+  std::shared_ptr<const SignedMeshSdf<T>> sdf_;
+  SignMode requested_ = SignMode::automatic;
 };
-
-/// How the sign of a mesh SDF is decided (`--sign`, scene key "sign").
-enum class SignMode { pseudonormal, unsigned_distance };
-
-/// Parses a --sign / "sign" value. Modes that do not exist yet are refused with a message.
-/// Throws CliError(`code`) prefixed by `where`.
-SignMode parse_sign_mode(const std::string& s, int code, const std::string& where);
-const char* to_string(SignMode m);
 
 /// Reads a mesh file (STL, PLY, OBJ, legacy VTK; format detected by content). Throws CliError
 /// (input) with the reader's `FILE: line/byte: what` message.
@@ -85,10 +109,12 @@ template <class T> PolygonSoup<T> load_mesh(const std::string& path) {
   return std::move(*soup);
 }
 
-/// Builds the CLI's mesh SDF. Throws CliError (input) naming `path` on failure.
+/// Builds the CLI's mesh SDF with sign mode `sign`. Throws CliError (input) naming `path` on
+/// failure.
 template <class T>
-CliMeshSdf<T> build_mesh_sdf(const PolygonSoup<T>& soup, const std::string& path) {
-  auto sdf = CliMeshSdf<T>::build(soup);
+CliMeshSdf<T> build_mesh_sdf(const PolygonSoup<T>& soup, const std::string& path,
+                             SignMode sign = SignMode::automatic) {
+  auto sdf = CliMeshSdf<T>::build(soup, sign);
   if (!sdf) fail(exit_input, path + ": " + sdf.error().what());
   return std::move(*sdf);
 }

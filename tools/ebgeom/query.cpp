@@ -20,7 +20,7 @@ namespace {
 
 struct QueryOptions {
   std::string input, points, output, closest, normals;
-  std::string sign = "pseudonormal";
+  std::string sign = "auto";
   int threads = 0;
   bool json = false, quiet = false;
 };
@@ -51,7 +51,7 @@ int run_query(const QueryOptions& o) {
   } else {
     PolygonSoup<double> soup = load_mesh<double>(o.input);
     t1 = now_s();
-    mesh = std::make_shared<const CliMeshSdf<double>>(build_mesh_sdf(soup, o.input));
+    mesh = std::make_shared<const CliMeshSdf<double>>(build_mesh_sdf(soup, o.input, sign));
     prog.box = mesh->bounds();
     prog.code.push_back({Op::mesh, 0, sign == SignMode::unsigned_distance ? 1u : 0u});
     prog.meshes.push_back(mesh);
@@ -143,7 +143,8 @@ int run_query(const QueryOptions& o) {
     j["min"] = n ? st.min : 0.0;
     j["max"] = n ? st.max : 0.0;
     j["inside_fraction"] = st.inside_fraction;
-    j["sign"] = to_string(sign);
+    j["sign"] = sign_name(sign);
+    if (mesh) j["sign_used"] = {{"mode", sign_name(mesh->sign())}, {"reason", mesh->sign_reason()}};
     j["threads"] = resolve_threads(ex);
     std::printf("%s\n", j.dump(2).c_str());
   } else if (!o.quiet) {
@@ -171,7 +172,9 @@ Subcommand add_query(CLI::App& app) {
   sub->add_option("--closest", o->closest, "closest surface points: float64 .npy (N, 3)");
   sub->add_option("--normals", o->normals,
                   "unit gradient of S (outward normal direction): float64 .npy (N, 3)");
-  sub->add_option("--sign", o->sign, "sign mode for meshes: pseudonormal or unsigned")
+  sub->add_option("--sign", o->sign,
+                  "sign mode for meshes: pseudonormal, winding, fast-winding, unsigned or auto "
+                  "(pseudonormal on closed manifold oriented meshes, fast-winding otherwise)")
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "threads (0 = all cores)")
       ->check(CLI::NonNegativeNumber);

@@ -35,19 +35,4 @@ bool is_scene_path(const std::string& path) {
   return ext == ".json" || ext == ".JSON";
 }
 
-SignMode parse_sign_mode(const std::string& s, int code, const std::string& where) {
-  if (s == "pseudonormal") return SignMode::pseudonormal;
-  if (s == "unsigned") return SignMode::unsigned_distance;
-  if (s == "winding" || s == "fast-winding" || s == "auto")
-    fail(code, where + ": sign mode '" + s +
-                   "' is not available yet in this version (available: pseudonormal, unsigned)");
-  fail(code,
-       where + ": unknown sign mode '" + s +
-           "' (expected pseudonormal or unsigned; winding, fast-winding and auto are planned)");
-}
-
-const char* to_string(SignMode m) {
-  return m == SignMode::pseudonormal ? "pseudonormal" : "unsigned";
-}
-
 } // namespace ebgeom::cli

@@ -381,7 +381,7 @@ template <class T> class SceneCompiler {
     check_keys(j, ptr, "mesh",
                {"path", "generate", "sign", "subdivisions", "radius", "major_radius",
                 "minor_radius", "min", "max"});
-    SignMode sign = SignMode::pseudonormal;
+    SignMode sign = SignMode::automatic;
     if (j.contains("sign")) {
       if (!j["sign"].is_string()) bad(ptr + "/sign", "expected a string");
       sign =
@@ -428,13 +428,13 @@ template <class T> class SceneCompiler {
       if (!r) bad(ptr, r.error().what());
       soup = std::move(*r);
     }
-    auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, label));
+    auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, label, sign));
     const Aabb<T> b = sdf->bounds();
     prog_.code.push_back({Op::mesh, std::uint32_t(prog_.meshes.size()),
                           sign == SignMode::unsigned_distance ? 1u : 0u});
+    kind = weakest(kind, sdf->sign_kind());
     prog_.meshes.push_back(std::move(sdf));
     ++info_.meshes;
-    if (sign == SignMode::unsigned_distance) kind = weakest(kind, SdfKind::implicit);
     push_value();
     return b;
   }
@@ -485,11 +485,11 @@ template <class T>
 Program<T> mesh_program(const std::string& path, SignMode sign, PolygonSoup<T>* keep = nullptr) {
   PolygonSoup<T> soup = load_mesh<T>(path);
   Program<T> prog;
-  auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, path));
+  auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, path, sign));
   prog.box = sdf->bounds();
   prog.code.push_back({Op::mesh, 0, sign == SignMode::unsigned_distance ? 1u : 0u});
+  prog.scene_kind = sdf->sign_kind();
   prog.meshes.push_back(std::move(sdf));
-  prog.scene_kind = sign == SignMode::unsigned_distance ? SdfKind::implicit : SdfKind::exact;
   if (keep) *keep = std::move(soup);
   return prog;
 }

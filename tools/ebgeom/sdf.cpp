@@ -21,7 +21,7 @@ struct SdfOptions {
   std::vector<double> box;
   double pad = 0.1;
   double band = 0;
-  std::string sign = "pseudonormal";
+  std::string sign = "auto";
   std::string precision = "float";
   int threads = 0;
   std::string png, slice = "z";
@@ -98,11 +98,11 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     PolygonSoup<T> soup = load_mesh<T>(o.input);
     t1 = now_s();
     prog.box = Aabb<T>::empty();
-    auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, o.input));
+    auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, o.input, sign));
     prog.box = sdf->bounds();
     prog.code.push_back({Op::mesh, 0, sign == SignMode::unsigned_distance ? 1u : 0u});
+    prog.scene_kind = sdf->sign_kind();
     prog.meshes.push_back(std::move(sdf));
-    prog.scene_kind = sign == SignMode::unsigned_distance ? SdfKind::implicit : SdfKind::exact;
   }
   const double t2 = now_s();
 
@@ -146,7 +146,10 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     j["min"] = st.min;
     j["max"] = st.max;
     j["inside_fraction"] = st.inside_fraction;
-    j["sign"] = to_string(sign);
+    j["sign"] = sign_name(sign);
+    if (!scene)
+      j["sign_used"] = {{"mode", sign_name(prog.meshes[0]->sign())},
+                        {"reason", prog.meshes[0]->sign_reason()}};
     j["threads"] = threads;
     if (!o.png.empty()) j["png"] = {{"path", o.png}, {"width", img.width}, {"height", img.height}};
     std::printf("%s\n", j.dump(2).c_str());
@@ -158,6 +161,9 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
                 double(h.y), double(h.z));
     std::printf("  values    min %.6g  max %.6g  inside fraction %.4f\n", st.min, st.max,
                 st.inside_fraction);
+    if (!scene)
+      std::printf("  sign      %s (%s)\n", sign_name(prog.meshes[0]->sign()),
+                  prog.meshes[0]->sign_reason().c_str());
     std::printf("  time      parse %.3f s  build %.3f s  eval %.3f s  write %.3f s  (%d threads)\n",
                 t1 - t0, t2 - t1, t3 - t2, t4 - t3, threads);
   }
@@ -190,7 +196,9 @@ Subcommand add_sdf(CLI::App& app) {
   sub->add_option("--band", o->band,
                   "narrow band of W times the largest cell spacing: exact inside, ±band outside")
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("--sign", o->sign, "sign mode for meshes: pseudonormal or unsigned")
+  sub->add_option("--sign", o->sign,
+                  "sign mode for meshes: pseudonormal, winding, fast-winding, unsigned or auto "
+                  "(pseudonormal on closed manifold oriented meshes, fast-winding otherwise)")
       ->capture_default_str();
   sub->add_option("--precision", o->precision, "float or double (computation and output)")
       ->check(CLI::IsMember({"float", "double"}))
