@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "ebgeom/core/parallel.hpp"
+#include "ebgeom/geom/solid_angle.hpp"
 #include "ebgeom/io/read_mesh.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
@@ -98,6 +99,8 @@ struct Row {
   // agreement with the reference on the first `checked` points
   std::string reference;
   std::size_t checked = 0, distance_bad = 0, sign_diff = 0, bitwise_equal = 0;
+  // sign differences arbitrated by the generalized winding number (inside when w > 1/2)
+  std::size_t sign_diff_ref_wins = 0, sign_diff_peer_wins = 0;
   double max_rel = 0, max_abs = 0;
   std::string note;
   bool is_reference = false;
@@ -530,6 +533,23 @@ template <class T> PrecisionRun run_precision(const Options& o) {
     const bool float_peer = row.method == "embree";
     check(row, ref_name, *out_ref, out, m, float_peer ? 1e-5 : rel_t,
           float_peer ? floor_f : floor_t);
+    // Where the signs differ, which one does the generalized winding number (Jacobson et al.
+    // 2013, O(n) per point, in double) agree with? On open meshes neither sign is "the" truth,
+    // but the winding number is the usual arbiter. At most 1000 points.
+    std::size_t arbitrated = 0;
+    for (std::size_t i = 0; i < row.checked && arbitrated < 1000; ++i) {
+      if (((*out_ref)[i] < 0) == (out[i] < 0)) continue;
+      ++arbitrated;
+      const Vec3<double> p = Vec3<double>::from(pts[i]);
+      double w = 0;
+      for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+        w += solid_angle(p, Vec3<double>::from(mesh.corner(t, 0)),
+                         Vec3<double>::from(mesh.corner(t, 1)),
+                         Vec3<double>::from(mesh.corner(t, 2)));
+      const bool inside = w / (4 * 3.14159265358979323846) > 0.5;
+      if (((*out_ref)[i] < 0) == inside) ++row.sign_diff_ref_wins;
+      if ((out[i] < 0) == inside) ++row.sign_diff_peer_wins;
+    }
   }
 #ifdef EBGEOM_BENCH_HAVE_EMBREE
   embree.reset();
@@ -541,6 +561,14 @@ template <class T> PrecisionRun run_precision(const Options& o) {
 // ---- output ---------------------------------------------------------------------------------
 
 double qps(const std::vector<double>& v) { return median(v); }
+
+// Median over rounds of a / b: the runs are interleaved, so round r of both methods saw about the
+// same load; less sensitive to drifting load than the ratio of the medians.
+double paired_ratio(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> r;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) r.push_back(a[i] / b[i]);
+  return median(r);
+}
 
 const Row* find(const PrecisionRun& run, const std::string& method) {
   for (const Row& r : run.rows)
@@ -586,18 +614,25 @@ void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
                   r.method.c_str(), r.reference.c_str(), r.checked, r.distance_bad, r.sign_diff,
                   r.checked ? 100.0 * double(r.sign_diff) / double(r.checked) : 0.0, r.max_rel,
                   r.max_abs, r.max_abs / mi.scale, r.bitwise_equal);
+      if (r.sign_diff > 0)
+        std::printf("  %-8s    sign differences: the winding number agrees with %s on %zu, with "
+                    "%s on %zu\n",
+                    "", r.reference.c_str(), r.sign_diff_ref_wins, r.method.c_str(),
+                    r.sign_diff_peer_wins);
     }
     const Row* eb = find(run, "ebgeom");
     if (eb) {
       std::printf("ratios ebgeom / peer (build and memory: < 1 is smaller; throughput: > 1 is "
                   "faster):\n");
-      std::printf("  %-8s %9s %9s %12s %12s\n", "peer", "build", "memory", "1-thr q/s",
-                  (std::to_string(o.threads) + "-thr q/s").c_str());
+      std::printf("  %-8s %9s %9s %12s %12s %14s %14s\n", "peer", "build", "memory", "1-thr q/s",
+                  (std::to_string(o.threads) + "-thr q/s").c_str(), "1-thr paired",
+                  (std::to_string(o.threads) + "-thr paired").c_str());
       for (const Row& r : run.rows) {
         if (&r == eb) continue;
-        std::printf("  %-8s %9.2f %9.2f %12.1f %12.1f\n", r.method.c_str(),
+        std::printf("  %-8s %9.2f %9.2f %12.1f %12.1f %14.1f %14.1f\n", r.method.c_str(),
                     eb->build_ms / r.build_ms, double(eb->memory) / double(r.memory),
-                    qps(eb->qps1) / qps(r.qps1), qps(eb->qpst) / qps(r.qpst));
+                    qps(eb->qps1) / qps(r.qps1), qps(eb->qpst) / qps(r.qpst),
+                    paired_ratio(eb->qps1, r.qps1), paired_ratio(eb->qpst, r.qpst));
       }
     }
   }
@@ -645,9 +680,14 @@ nlohmann::json to_json(const Options& o, const std::vector<PrecisionRun>& runs) 
       if (r.is_reference) {
         m["reference"] = true;
       } else {
-        m["check"] = {{"reference", r.reference},         {"points", r.checked},
-                      {"distance_bad", r.distance_bad},   {"sign_diff", r.sign_diff},
-                      {"bitwise_equal", r.bitwise_equal}, {"max_rel_err", r.max_rel},
+        m["check"] = {{"reference", r.reference},
+                      {"points", r.checked},
+                      {"distance_bad", r.distance_bad},
+                      {"sign_diff", r.sign_diff},
+                      {"sign_diff_reference_agrees_with_winding", r.sign_diff_ref_wins},
+                      {"sign_diff_peer_agrees_with_winding", r.sign_diff_peer_wins},
+                      {"bitwise_equal", r.bitwise_equal},
+                      {"max_rel_err", r.max_rel},
                       {"max_abs_err", r.max_abs}};
       }
       if (!r.note.empty()) m["note"] = r.note;
@@ -660,7 +700,9 @@ nlohmann::json to_json(const Options& o, const std::vector<PrecisionRun>& runs) 
         ratios[r.method] = {{"build", eb->build_ms / r.build_ms},
                             {"memory", double(eb->memory) / double(r.memory)},
                             {"qps_1", qps(eb->qps1) / qps(r.qps1)},
-                            {"qps_threads", qps(eb->qpst) / qps(r.qpst)}};
+                            {"qps_threads", qps(eb->qpst) / qps(r.qpst)},
+                            {"qps_1_paired", paired_ratio(eb->qps1, r.qps1)},
+                            {"qps_threads_paired", paired_ratio(eb->qpst, r.qpst)}};
       }
       jr["ratios_ebgeom_over_peer"] = ratios;
     }
