@@ -90,6 +90,7 @@ struct BuildOptions {
   BuildMethod method = BuildMethod::sah_binned;
   std::uint32_t max_leaf_size = 4; ///< a node with at most this many primitives becomes a leaf
   int bins = 16;                   ///< SAH bins per axis (2..64)
+  std::uint32_t block = 1; ///< SAH: fill leaves in whole blocks of this size (see SahPartition)
 };
 
 /// Leaf when a node holds at most `max_leaf_size` primitives.
@@ -150,44 +151,66 @@ template <int K> struct ChunkPartition {
   }
 };
 
-/// Binned surface-area heuristic: for each axis, `bins` bins over the centroid box; the split
-/// minimising area(L)·|L| + area(R)·|R| wins. Falls back to a median split when all centroids
-/// coincide. O(n · axes) per node.
+/// Binned surface-area heuristic: `bins` bins per axis over the centroid box, all three axes
+/// binned in one pass; the split minimising area(L)·|L| + area(R)·|R| wins. Falls back to a median
+/// split when all centroids coincide. O(n) per node.
+///
+/// `block` > 1 makes leaves that fill whole blocks of that many primitives (mesh SDFs process W
+/// triangles at once): nodes of at most 4·block primitives are cut, along the longest centroid
+/// axis, after a multiple of `block` (the one nearest the middle), so almost every leaf is full,
+/// and the cost counts blocks, ceil(|L| / block), rather than primitives.
 struct SahPartition {
   int bins = 16;
+  std::uint32_t block = 1;
   template <class T>
   Parts operator()(const PartitionInput<T>& in, std::uint32_t* idx, std::uint32_t n) const {
+    Parts parts;
+    parts.count = 2;
+    parts.ends[1] = n;
+    if (block > 1 && n <= 4 * block) {
+      detail::sort_by_axis(idx, n, in.centroids, in.centroid_box.longest_axis());
+      const std::uint32_t k = std::max<std::uint32_t>(1, (n + block) / (2 * block));
+      parts.ends[0] = std::min(n - 1, k * block);
+      return parts;
+    }
     constexpr int max_bins = 64;
     const int nb = std::max(2, std::min(bins, max_bins));
     const Vec3<T> lo = in.centroid_box.lo, ext = in.centroid_box.extent();
+    Vec3<T> scale;
+    for (int a = 0; a < 3; ++a) scale[a] = ext[a] > T(0) ? T(nb) / ext[a] : T(0);
+    Aabb<T> bbox[3][max_bins];
+    std::uint32_t bcount[3][max_bins];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < nb; ++b) bbox[a][b] = Aabb<T>(), bcount[a][b] = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t p = idx[i];
+      const Vec3<T> c = in.centroids[p];
+      const Aabb<T>& box = in.boxes[p];
+      for (int a = 0; a < 3; ++a) {
+        const int b = std::min(nb - 1, int((c[a] - lo[a]) * scale[a]));
+        bbox[a][b].extend(box);
+        ++bcount[a][b];
+      }
+    }
     T best_cost = std::numeric_limits<T>::infinity();
     int best_axis = -1, best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
       if (!(ext[axis] > T(0))) continue;
-      const T scale = T(nb) / ext[axis];
-      Aabb<T> bbox[max_bins];
-      std::uint32_t bcount[max_bins] = {};
-      for (std::uint32_t i = 0; i < n; ++i) {
-        const std::uint32_t p = idx[i];
-        const int b = std::min(nb - 1, int((in.centroids[p][axis] - lo[axis]) * scale));
-        bbox[b].extend(in.boxes[p]);
-        ++bcount[b];
-      }
       T right_cost[max_bins];
       Aabb<T> acc;
       std::uint32_t cnt = 0;
       for (int b = nb - 1; b > 0; --b) {
-        acc.extend(bbox[b]);
-        cnt += bcount[b];
-        right_cost[b] = cnt ? acc.half_area() * T(cnt) : T(0);
+        acc.extend(bbox[axis][b]);
+        cnt += bcount[axis][b];
+        right_cost[b] = cnt ? acc.half_area() * T((cnt + block - 1) / block) : T(0);
       }
       acc = Aabb<T>();
       cnt = 0;
       for (int b = 0; b < nb - 1; ++b) {
-        acc.extend(bbox[b]);
-        cnt += bcount[b];
+        acc.extend(bbox[axis][b]);
+        cnt += bcount[axis][b];
         if (cnt == 0 || cnt == n) continue;
-        const T cost = acc.half_area() * T(cnt) + right_cost[b + 1];
+        const T cost = acc.half_area() * T((cnt + block - 1) / block) + right_cost[b + 1];
         if (cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
@@ -196,15 +219,11 @@ struct SahPartition {
       }
     }
     if (best_axis < 0) return detail::median_split(in, idx, n);
-    const T scale = T(nb) / ext[best_axis];
+    const int ax = best_axis;
     std::uint32_t* mid = std::partition(idx, idx + n, [&](std::uint32_t p) {
-      return std::min(nb - 1, int((in.centroids[p][best_axis] - lo[best_axis]) * scale)) <=
-             best_bin;
+      return std::min(nb - 1, int((in.centroids[p][ax] - lo[ax]) * scale[ax])) <= best_bin;
     });
-    Parts parts;
-    parts.count = 2;
     parts.ends[0] = std::uint32_t(mid - idx);
-    parts.ends[1] = n;
     return parts;
   }
 };
@@ -390,7 +409,8 @@ BuildTree<T> build(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
     return build_morton<T>(boxes, centroids, leaf);
   case BuildMethod::sah_binned:
   default:
-    return build_top_down<T>(boxes, centroids, SahPartition{options.bins}, LeafSizeStop{leaf});
+    return build_top_down<T>(boxes, centroids, SahPartition{options.bins, options.block},
+                             LeafSizeStop{leaf});
   }
 }
 

@@ -27,6 +27,17 @@
 #define EBGEOM_RESTRICT
 #endif
 
+/// On a kernel whose selects must become vector blends: GCC will not if-convert (and so not
+/// vectorise) a loop whose branches hold FP operations that might trap, unless told that FP
+/// exceptions are not observed. This changes no value (rounding, order and signed zeros are kept).
+/// The attribute forbids inlining into callers with other options, so such kernels are plain
+/// `inline` functions called once per block. Other compilers vectorise without it.
+#if defined(__GNUC__) && !defined(__clang__)
+#define EBGEOM_VECTOR_KERNEL __attribute__((optimize("no-trapping-math")))
+#else
+#define EBGEOM_VECTOR_KERNEL
+#endif
+
 /// Internal invariants only (never user data). On when EBGEOM_ENABLE_ASSERTS is defined, which our
 /// Debug, test and fuzz builds do; users get it with -DEBGEOM_ENABLE_ASSERTS.
 #if defined(EBGEOM_ENABLE_ASSERTS)

@@ -50,10 +50,12 @@ template <class T> inline constexpr int default_block_width = sizeof(T) == 4 ? 8
 /// Squared distance from `p` to each triangle of a block. Performs exactly the operations of
 /// `closest_point_triangle` per lane (same order, same selects), so `d2[l]` equals its
 /// `distance2` bit for bit; divisions are computed unconditionally with a safe divisor so the
-/// loop has no branch and vectorises.
+/// loop has no branch and vectorises (checked with -fopt-info-vec: 8 floats per AVX2 register at
+/// -O2 and -O3, 4 with SSE2).
 template <class T, int W>
-EBGEOM_FORCE_INLINE void block_distance2(const TriBlock<T, W>& t, const Vec3<T>& p,
-                                         T (&out)[W]) noexcept {
+EBGEOM_VECTOR_KERNEL inline void block_distance2(const TriBlock<T, W>& t, const Vec3<T>& p,
+                                                 T (&out)[W]) noexcept {
+  T res[W]; // a local result array: no aliasing with `t`, so no runtime alias check is needed
   for (int l = 0; l < W; ++l) {
     const T ax = t.ax[l], ay = t.ay[l], az = t.az[l];
     const T bx = t.bx[l], by = t.by[l], bz = t.bz[l];
@@ -113,9 +115,11 @@ EBGEOM_FORCE_INLINE void block_distance2(const TriBlock<T, W>& t, const Vec3<T>&
         nx * (cay * cpz - caz * cpy) + ny * (caz * cpx - cax * cpz) + nz * (cax * cpy - cay * cpx);
     const T h = nx * apx + ny * apy + nz * apz;
     const T fd2 = h * h / (nn > T(0) ? nn : T(1));
-    const bool inside = nn > T(0) && w0 >= T(0) && w1 >= T(0) && w2 >= T(0) && fd2 <= m;
-    out[l] = inside ? fd2 : m;
+    // `&`, not `&&`: no short circuit, so the loop has no control flow and vectorises.
+    const bool inside = (nn > T(0)) & (w0 >= T(0)) & (w1 >= T(0)) & (w2 >= T(0)) & (fd2 <= m);
+    res[l] = inside ? fd2 : m;
   }
+  for (int l = 0; l < W; ++l) out[l] = res[l];
 }
 
 /// Exact signed distance to a triangle mesh through a BVH (see the file comment).
@@ -134,10 +138,11 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
   static constexpr int arity = K;
   static constexpr int block_width = W;
 
-  /// Default build: binned SAH with leaves of at most one block.
+  /// Default build: binned SAH with leaves of at most one block, filled in whole blocks.
   static bvh::BuildOptions default_build_options() noexcept {
     bvh::BuildOptions o;
     o.max_leaf_size = std::uint32_t(W);
+    o.block = std::uint32_t(W);
     return o;
   }
 
