@@ -2,7 +2,7 @@
 // file is given), builds its signed distance once, builds the embedded boundary with EB2 and
 // writes a plotfile with the volume fraction and the EB implicit function at cell centres.
 //
-//   ./main3d.gnu.OMP.EB.ex inputs mesh_sdf.file=part.stl mesh_sdf.n_cell=128
+//   ./main3d.gnu.*.ex inputs mesh_sdf.file=part.stl mesh_sdf.n_cell=128
 //
 // Parameters (ParmParse, prefix `mesh_sdf.`): file (default: none -> icosphere), n_cell (64),
 // max_grid_size (32), padding (0.1: domain margin, as a fraction of the mesh's largest extent),

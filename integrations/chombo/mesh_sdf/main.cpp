@@ -2,7 +2,7 @@
 // file is given), builds its signed distance once, builds the EB index space with GeometryShop +
 // EBIndexSpace::define, and writes the implicit function at cell centres (HDF5 builds).
 //
-//   mpirun -np 4 ./main3d.Linux.64.mpicxx.gfortran.OPT.MPI.ex mesh_sdf.inputs
+//   mpirun -np 4 ./main3d.*.ex mesh_sdf.inputs
 //
 // Parameters (ParmParse, prefix `mesh_sdf.`): file (none -> icosphere), n_cells (64), grid_size
 // (16), padding (0.1), fluid_inside (0), z_slice (0.0, for 2D builds), output ("mesh_sdf.hdf5").
