@@ -82,6 +82,15 @@ TEST(DirtyMesh, HolesOfSeveralSizes) {
       EXPECT_GT(used, 500);
     }
   }
+  // One face missing: the winding modes are right just above and just below the hole.
+  {
+    const Soup one = test::remove_cap(sphere(), top_z - 1e-9);
+    const V c = test::face_centroid(sphere(), top);
+    for (SignMode m : winding_modes) {
+      EXPECT_FALSE(inside(with_mode(one, m), c * 1.1)) << to_string(m);
+      EXPECT_TRUE(inside(with_mode(one, m), c * 0.9)) << to_string(m);
+    }
+  }
   // Medium hole: above it, pseudonormal takes the rim for the surface and says "inside"; the
   // winding number (about 0.2 there) says outside. The winding modes close the hole with a
   // surface spanning the rim: below the rim plane is inside, the missing cap above it outside.
