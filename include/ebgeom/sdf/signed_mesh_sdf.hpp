@@ -119,7 +119,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
  public:
   using scalar_type = T;
   /// Exact magnitude; the sign is exact only with `pseudonormal` on valid meshes, so the static
-  /// kind is `implicit` unless you know better (`resolved_mode()`).
+  /// kind is the conservative `implicit`; `dynamic_kind()` gives the object's own.
   static constexpr SdfKind kind = SdfKind::implicit;
 
   /// Triangulates and validates `soup` (the validation decides `automatic`), then builds.
@@ -190,6 +190,13 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
   T winding_number(const Vec3<T>& p) const noexcept {
     if (mode_ == SignMode::fast_winding) return fast_(p);
     return ebgeom::winding_number(sdf_.mesh(), p);
+  }
+
+  /// `exact` with the pseudonormal sign (as `MeshSdf`), `implicit` otherwise: a winding sign
+  /// also changes across the surfaces that fill holes, far from the mesh, so evaluators must not
+  /// propagate signs between far samples (`kind_of` in eval/evaluate.hpp reads this).
+  SdfKind dynamic_kind() const noexcept {
+    return mode_ == SignMode::pseudonormal ? SdfKind::exact : SdfKind::implicit;
   }
 
   /// The mode used (never `automatic`) and why it was chosen ("requested" unless automatic).

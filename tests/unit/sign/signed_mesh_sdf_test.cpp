@@ -112,6 +112,16 @@ TEST(SignedMeshSdfErrors, BadInputIsAnError) {
             ErrorCode::invalid_argument);
 }
 
+static_assert(is_sdf_v<SignedMeshSdf<float>> && is_sdf_v<SignedMeshSdf<double>>);
+
+TEST(SignedMeshSdfKind, ExactOnlyWithThePseudonormalSign) {
+  const auto soup = make_icosphere<double>(1).value();
+  EXPECT_EQ(with_mode(soup, SignMode::pseudonormal).dynamic_kind(), SdfKind::exact);
+  EXPECT_EQ(with_mode(soup, SignMode::automatic).dynamic_kind(), SdfKind::exact);
+  for (SignMode m : {SignMode::winding, SignMode::fast_winding, SignMode::unsigned_distance})
+    EXPECT_EQ(with_mode(soup, m).dynamic_kind(), SdfKind::implicit) << to_string(m);
+}
+
 TEST(SignedMeshSdfNames, ToString) {
   EXPECT_STREQ(to_string(SignMode::fast_winding), "fast_winding");
   EXPECT_STREQ(to_string(SignMode::unsigned_distance), "unsigned_distance");
