@@ -72,8 +72,8 @@ INSTANTIATE_TEST_SUITE_P(Shared, FastWindingOnOpenMeshes,
                          ::testing::Values(OpenMesh{"stanford-bunny.obj", 20000},
                                            OpenMesh{"teapot.obj", 100000},
                                            OpenMesh{"suzanne.obj", 100000}),
-                         [](const auto& info) {
-                           std::string n = info.param.name;
+                         [](const auto& param_info) {
+                           std::string n = param_info.param.name;
                            return n.substr(0, n.find_first_of("-."));
                          });
 
