@@ -9,64 +9,11 @@
 #include "common.hpp"
 #include "grid_job.hpp"
 #include "scene.hpp"
+#include "sdf_job.hpp"
 
 namespace ebgeom::cli {
 
 namespace {
-
-struct SdfOptions {
-  std::string input, output;
-  std::vector<std::size_t> res;
-  double dx = 0;
-  std::vector<double> box;
-  double pad = 0.1;
-  double band = 0;
-  std::string sign = "auto";
-  std::string precision = "float";
-  int threads = 0;
-  std::string png, slice = "z";
-  bool json = false, quiet = false, nodes = false;
-};
-
-template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bounds) {
-  GridSpec<T> spec;
-  spec.centering = o.nodes ? Centering::node : Centering::cell;
-  if (!o.box.empty()) {
-    spec.box =
-        Aabb<T>({T(o.box[0]), T(o.box[1]), T(o.box[2])}, {T(o.box[3]), T(o.box[4]), T(o.box[5])});
-    for (int a = 0; a < 3; ++a)
-      if (!(spec.box.lo[a] < spec.box.hi[a]))
-        fail(exit_usage,
-             std::string("--box: X0 Y0 Z0 must be below X1 Y1 Z1 (axis ") + "xyz"[a] + ")");
-  } else {
-    for (int a = 0; a < 3; ++a)
-      if (!std::isfinite(bounds.lo[a]) || !std::isfinite(bounds.hi[a]))
-        fail(exit_usage, o.input + ": the input is unbounded (e.g. a plane); give --box");
-    if (bounds.is_empty()) fail(exit_input, o.input + ": the input is empty");
-    const Vec3<T> e = bounds.extent();
-    const T big = max_component(e) > T(0) ? max_component(e) : T(1);
-    Vec3<T> pad;
-    for (int a = 0; a < 3; ++a) pad[a] = T(o.pad) * (e[a] > big * T(1e-3) ? e[a] : big);
-    spec.box = Aabb<T>(bounds.lo - pad, bounds.hi + pad);
-  }
-  if (o.dx > 0) {
-    const Vec3<T> e = spec.box.extent();
-    for (int a = 0; a < 3; ++a) {
-      const double n = std::ceil(double(e[a]) / o.dx - 1e-9);
-      if (n > double(1 << 21)) fail(exit_usage, "--dx is too small for the box (over 2^21 cells)");
-      spec.dims[a] = std::max<std::size_t>(1, std::size_t(n)) + (o.nodes ? 1 : 0);
-      const std::size_t cells = o.nodes ? spec.dims[a] - 1 : spec.dims[a];
-      spec.box.hi[a] = spec.box.lo[a] + T(double(std::max<std::size_t>(cells, 1)) * o.dx);
-    }
-  } else if (o.res.size() == 3) {
-    spec.dims = {{o.res[0], o.res[1], o.res[2]}};
-  } else {
-    const std::size_t n = o.res.empty() ? 64 : o.res[0];
-    spec.dims = {{n, n, n}};
-  }
-  if (auto ok = spec.validate(); !ok) fail(exit_usage, ok.error().what());
-  return spec;
-}
 
 template <class T> int run_sdf_as(const SdfOptions& o) {
   const bool scene = is_scene_path(o.input);
@@ -87,23 +34,9 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   }
 
   const double t0 = now_s();
-  Program<T> prog;
-  SceneInfo info;
-  double t1;
-  if (scene) {
-    const Json doc = read_json_file(o.input);
-    t1 = now_s();
-    prog = compile_scene<T>(doc, o.input, &info);
-  } else {
-    PolygonSoup<T> soup = load_mesh<T>(o.input);
-    t1 = now_s();
-    prog.box = Aabb<T>::empty();
-    auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, o.input, sign));
-    prog.box = sdf->bounds();
-    prog.code.push_back({Op::mesh, 0, sign == SignMode::unsigned_distance ? 1u : 0u});
-    prog.scene_kind = sdf->sign_kind();
-    prog.meshes.push_back(std::move(sdf));
-  }
+  const SdfInput<T> in = load_sdf_input<T>(o, sign);
+  const Program<T>& prog = in.prog;
+  const double t1 = t0 + in.parse_s;
   const double t2 = now_s();
 
   const GridSpec<T> spec = make_spec(o, prog.bounds());
@@ -176,55 +109,12 @@ Subcommand add_sdf(CLI::App& app) {
   auto o = std::make_shared<SdfOptions>();
   CLI::App* sub = app.add_subcommand(
       "sdf", "Sample the signed distance of a mesh file or a JSON scene on a dense grid");
-  sub->add_option("INPUT", o->input, "mesh file (STL, PLY, OBJ, VTK) or scene file (.json)")
-      ->required();
-  sub->add_option("-o,--output", o->output,
-                  "output grid: .vti (ParaView), .npy (NumPy, shape (NZ, NY, NX)) or .raw "
-                  "(with a .json sidecar)")
-      ->required();
-  auto* res = sub->add_option("--res", o->res,
-                              "N cells on every axis, or NX NY NZ (default 64; cell-centred)")
-                  ->expected(1, 3);
-  auto* dx = sub->add_option("--dx", o->dx, "cubic cells of size H (the box grows to fit)")
-                 ->check(CLI::PositiveNumber);
-  res->excludes(dx);
-  sub->add_option("--box", o->box, "X0 Y0 Z0 X1 Y1 Z1 (default: bounding box + --pad)")
-      ->expected(6);
-  sub->add_option("--pad", o->pad, "padding per side, as a fraction of the extent")
-      ->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
-  sub->add_option("--band", o->band,
-                  "narrow band of W times the largest cell spacing: exact inside, ±band outside")
-      ->check(CLI::NonNegativeNumber);
-  sub->add_option("--sign", o->sign,
-                  "sign mode for meshes: pseudonormal, winding, fast-winding, unsigned or auto "
-                  "(pseudonormal on closed manifold oriented meshes, fast-winding otherwise)")
-      ->capture_default_str();
-  sub->add_option("--precision", o->precision, "float or double (computation and output)")
-      ->check(CLI::IsMember({"float", "double"}))
-      ->capture_default_str();
-  sub->add_option("--threads", o->threads, "threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
-  auto* png = sub->add_option("--png", o->png, "also write a PNG slice of the grid");
-  sub->add_option("--slice", o->slice, "slice of the PNG: x, y or z, optionally =FRACTION")
-      ->needs(png)
-      ->capture_default_str();
-  sub->add_flag("--nodes", o->nodes, "node-centred samples (include the box faces)");
-  sub->add_flag("--json", o->json, "print a JSON summary on stdout");
-  sub->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
+  add_sdf_options(sub, o);
   sub->footer(
       "Examples:\n"
       "  ebgeom sdf bunny.obj -o bunny.vti --res 128\n"
       "  ebgeom sdf part.stl -o part.npy --dx 0.01 --precision double --json\n"
       "  ebgeom sdf examples/scenes/csg.json -o csg.raw --res 96 --png csg.png --slice y=0.5");
-  sub->callback([o, res] {
-    if (!o->res.empty() && o->res.size() != 1 && o->res.size() != 3)
-      throw CLI::ValidationError("--res", "expects N or NX NY NZ");
-    for (std::size_t n : o->res)
-      if (n < 1 || n > (std::size_t(1) << 21))
-        throw CLI::ValidationError("--res", "each resolution must be in 1..2097152");
-    (void)res;
-  });
   return {sub, [o] {
             return o->precision == "double" ? run_sdf_as<double>(*o) : run_sdf_as<float>(*o);
           }};

@@ -192,17 +192,20 @@ inline void rcb(const BrickLayout& l, Span<const double> w, const RcbBox& box, s
           p.work += weight_of(i + l.counts[0] * (j + l.counts[1] * k));
     return;
   }
-  const std::size_t n1 = np / 2, n2 = np - n1;
-  // Best cut over all axes: minimise the larger per-part work of the two sides, preferring cuts
+  // Best cut over all axes and part counts n1 | np - n1 (n1 near np times the left side's share
+  // of the work, or np / 2): minimise the larger per-part work of the two sides, preferring cuts
   // that leave each side at least as many bricks as parts, then balanced volume, then the axis
   // with the most samples (squarer boxes, smaller pieces' surfaces).
   struct Cut {
     int axis = -1;
-    std::size_t at = 0;
+    std::size_t at = 0, n1 = 0;
     bool feasible = false;
     double cost = 0, vcost = 0;
     std::size_t extent = 0;
   } best;
+  auto key = [](const Cut& x) {
+    return std::make_tuple(!x.feasible, x.cost, x.vcost, std::size_t(0) - x.extent, x.n1);
+  };
   for (int a = 0; a < 3; ++a) {
     const std::size_t len = box.hi[a] - box.lo[a];
     if (len < 2) continue;
@@ -220,35 +223,41 @@ inline void rcb(const BrickLayout& l, Span<const double> w, const RcbBox& box, s
     double left = 0;
     for (std::size_t c = 1; c < len; ++c) {
       left += slab[c - 1];
-      Cut cut;
-      cut.axis = a;
-      cut.at = box.lo[a] + c;
-      cut.feasible = c * cross >= n1 && (len - c) * cross >= n2;
-      cut.cost = std::max(left / double(n1), (total - left) / double(n2));
-      cut.vcost = std::max(double(c) / double(n1), double(len - c) / double(n2)) * double(cross);
-      cut.extent = extent;
-      auto key = [](const Cut& x) {
-        return std::make_tuple(!x.feasible, x.cost, x.vcost, std::size_t(0) - x.extent);
-      };
-      if (best.axis < 0 || key(cut) < key(best)) best = cut;
+      const double share = total > 0 ? left / total : double(c) / double(len);
+      const double ideal = share * double(np);
+      const std::size_t tries[3] = {np / 2, std::size_t(std::floor(ideal)),
+                                    std::size_t(std::ceil(ideal))};
+      for (std::size_t n1 : tries) {
+        n1 = std::min(std::max<std::size_t>(n1, 1), np - 1);
+        const std::size_t n2 = np - n1;
+        Cut cut;
+        cut.axis = a;
+        cut.at = box.lo[a] + c;
+        cut.n1 = n1;
+        cut.feasible = c * cross >= n1 && (len - c) * cross >= n2;
+        cut.cost = std::max(left / double(n1), (total - left) / double(n2));
+        cut.vcost = std::max(double(c) / double(n1), double(len - c) / double(n2)) * double(cross);
+        cut.extent = extent;
+        if (best.axis < 0 || key(cut) < key(best)) best = cut;
+      }
     }
   }
   RcbBox left = box, right = box;
   left.hi[best.axis] = best.at;
   right.lo[best.axis] = best.at;
-  rcb(l, w, left, p0, n1, parts);
-  rcb(l, w, right, p0 + n1, n2, parts);
+  rcb(l, w, left, p0, best.n1, parts);
+  rcb(l, w, right, p0 + best.n1, np - best.n1, parts);
 }
 
 } // namespace detail
 
 /// Splits `layout` into `parts` boxes of bricks by recursive coordinate bisection: each step cuts
-/// a box in two (at a brick boundary, on the axis and plane that best balance
-/// `weights[b] / parts per side`) and recurses, so every part is one box. `weights` holds one
-/// non-negative value per brick (linear index), or is empty for equal weights. Parts beyond the
-/// brick count are empty. Deterministic: the same inputs give the same parts on every process.
-/// O(bricks * 3 * log2(parts)). Precondition: `parts >= 1`, `weights` empty or `layout.size()`
-/// long.
+/// a box in two (at a brick boundary, on the axis and plane, and with the share of the parts,
+/// that best balance the work per part, `weights` summed) and recurses, so every part is one box.
+/// `weights` holds one non-negative value per brick (linear index), or is empty for equal weights.
+/// Parts beyond the brick count are empty. Deterministic: the same inputs give the same parts on
+/// every process. O(bricks * 3 * log2(parts)). Precondition: `parts >= 1`, `weights` empty or
+/// `layout.size()` long.
 inline Decomposition decompose(const BrickLayout& layout, std::size_t parts,
                                Span<const double> weights = {}) {
   Decomposition d;

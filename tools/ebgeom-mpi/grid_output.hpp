@@ -1,0 +1,220 @@
+#pragma once
+// Distributed grid output of ebgeom-mpi:
+//  - `.pvti`: one VTK ImageData piece per rank (`OUT_<rank>.vti` beside `OUT.pvti`), each piece
+//    holding its box plus one layer of samples on its upper faces (VTK pieces share their
+//    boundary points, otherwise ParaView shows a gap of one cell between pieces);
+//  - `.npy` / `.raw`: one file written collectively with MPI-IO; rank 0 writes the header, every
+//    rank writes its box through a subarray file view. The bytes equal the serial writers'.
+// Every output is written under a temporary name and renamed when all ranks succeeded.
+
+#include <mpi.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ebgeom/eval/decompose.hpp"
+#include "ebgeom/eval/write_grid.hpp"
+#include "mpi_support.hpp"
+
+namespace ebgeom::mpi {
+
+/// Output kinds of ebgeom-mpi, by extension.
+enum class OutputKind { pvti, npy, raw };
+
+/// The NumPy 1.0 header `write_npy` writes for `shape` (slowest first) and `dtype`.
+inline std::string npy_header(const std::vector<std::size_t>& shape, DType dtype) {
+  std::string dict = "{'descr': '";
+  dict += detail::host_is_little_endian() ? '<' : '>';
+  dict += dtype == DType::float32 ? "f4" : "f8";
+  dict += "', 'fortran_order': False, 'shape': (";
+  for (std::size_t i = 0; i < shape.size(); ++i) {
+    dict += std::to_string(shape[i]);
+    if (shape.size() == 1 || i + 1 < shape.size()) dict += ",";
+    if (i + 1 < shape.size()) dict += " ";
+  }
+  dict += "), }";
+  std::size_t total = 10 + dict.size() + 1;
+  total = (total + 63) / 64 * 64;
+  dict.append(total - 10 - dict.size() - 1, ' ');
+  dict += '\n';
+  const std::size_t hlen = dict.size();
+  std::string head = "\x93NUMPY";
+  head += char(1);
+  head += char(0);
+  head += char(hlen & 0xff);
+  head += char((hlen >> 8) & 0xff);
+  return head + dict;
+}
+
+inline std::string extent_text(const GridRange& r) {
+  return std::to_string(r.lo[0]) + ' ' + std::to_string(r.hi[0] - 1) + ' ' +
+         std::to_string(r.lo[1]) + ' ' + std::to_string(r.hi[1] - 1) + ' ' +
+         std::to_string(r.lo[2]) + ' ' + std::to_string(r.hi[2] - 1);
+}
+
+/// The samples a .pvti piece of `owned` holds: `owned` plus one layer on each upper face that is
+/// not the grid's.
+inline GridRange piece_range(const GridRange& owned, const std::array<std::size_t, 3>& dims) {
+  GridRange r = owned;
+  for (int a = 0; a < 3; ++a) r.hi[a] = std::min(r.hi[a] + 1, dims[a]);
+  return r;
+}
+
+/// `OUT.pvti` -> `OUT_<rank>.vti` (full path) and its name relative to the .pvti.
+inline std::string piece_path(const std::string& pvti, int rank) {
+  const std::filesystem::path p(pvti);
+  return (p.parent_path() / (p.stem().string() + "_" + std::to_string(rank) + ".vti")).string();
+}
+
+/// Writes one VTK ImageData piece: `values` over `piece` (global extents), origin and spacing of
+/// `spec`, so the piece opens on its own at the right place too. Atomic. Errors: `io`.
+template <class T>
+Result<Ok> write_vti_piece(const std::string& path, const GridSpec<T>& spec, const GridRange& piece,
+                           Span<const T> values, const WriteGridOptions& opt) {
+  const Vec3<T> o = spec.origin(), h = spec.spacing();
+  auto xml = detail::number_stream();
+  const std::string extent = extent_text(piece);
+  xml << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\""
+      << (detail::host_is_little_endian() ? "LittleEndian" : "BigEndian")
+      << "\" header_type=\"UInt64\">\n"
+      << "  <ImageData WholeExtent=\"" << extent << "\" Origin=\"" << double(o.x) << ' '
+      << double(o.y) << ' ' << double(o.z) << "\" Spacing=\"" << double(h.x) << ' ' << double(h.y)
+      << ' ' << double(h.z) << "\">\n"
+      << "    <Piece Extent=\"" << extent << "\">\n"
+      << "      <PointData Scalars=\"" << detail::xml_escape(opt.name) << "\">\n"
+      << "        <DataArray type=\"" << (opt.dtype == DType::float32 ? "Float32" : "Float64")
+      << "\" Name=\"" << detail::xml_escape(opt.name)
+      << "\" NumberOfComponents=\"1\" format=\"appended\" offset=\"0\"/>\n"
+      << "      </PointData>\n"
+      << "      <CellData/>\n"
+      << "    </Piece>\n"
+      << "  </ImageData>\n"
+      << "  <AppendedData encoding=\"raw\">\n   _";
+  detail::AtomicFile f(path);
+  if (!f.is_open()) return f.open_error();
+  auto& os = f.stream();
+  const std::string head = xml.str();
+  os.write(head.data(), std::streamsize(head.size()));
+  const std::uint64_t nbytes = std::uint64_t(values.size()) * dtype_size(opt.dtype);
+  os.write(reinterpret_cast<const char*>(&nbytes), sizeof nbytes);
+  detail::write_values(os, values, opt.dtype);
+  const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
+  os.write(tail.data(), std::streamsize(tail.size()));
+  if (auto ok = f.close(); !ok) return ok;
+  return f.commit();
+}
+
+/// Writes the `.pvti` naming `pieces[r]` (empty ranges are left out) as `OUT_<r>.vti`. Atomic.
+template <class T>
+Result<Ok> write_pvti(const std::string& path, const GridSpec<T>& spec,
+                      const std::vector<GridRange>& pieces, const WriteGridOptions& opt) {
+  const Vec3<T> o = spec.origin(), h = spec.spacing();
+  auto xml = detail::number_stream();
+  xml << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PImageData\" version=\"1.0\" byte_order=\""
+      << (detail::host_is_little_endian() ? "LittleEndian" : "BigEndian")
+      << "\" header_type=\"UInt64\">\n"
+      << "  <PImageData WholeExtent=\"" << extent_text(GridRange::all(spec))
+      << "\" GhostLevel=\"0\" Origin=\"" << double(o.x) << ' ' << double(o.y) << ' ' << double(o.z)
+      << "\" Spacing=\"" << double(h.x) << ' ' << double(h.y) << ' ' << double(h.z) << "\">\n"
+      << "    <PPointData Scalars=\"" << detail::xml_escape(opt.name) << "\">\n"
+      << "      <PDataArray type=\"" << (opt.dtype == DType::float32 ? "Float32" : "Float64")
+      << "\" Name=\"" << detail::xml_escape(opt.name) << "\" NumberOfComponents=\"1\"/>\n"
+      << "    </PPointData>\n";
+  for (std::size_t r = 0; r < pieces.size(); ++r) {
+    if (pieces[r].size() == 0) continue;
+    const std::string name = std::filesystem::path(piece_path(path, int(r))).filename().string();
+    xml << "    <Piece Extent=\"" << extent_text(pieces[r]) << "\" Source=\""
+        << detail::xml_escape(name) << "\"/>\n";
+  }
+  xml << "  </PImageData>\n</VTKFile>\n";
+  detail::AtomicFile f(path);
+  if (!f.is_open()) return f.open_error();
+  const std::string text = xml.str();
+  f.stream().write(text.data(), std::streamsize(text.size()));
+  if (auto ok = f.close(); !ok) return ok;
+  return f.commit();
+}
+
+template <class T> MPI_Datatype mpi_type() { return sizeof(T) == 4 ? MPI_FLOAT : MPI_DOUBLE; }
+
+/// Collective: writes `header` then the grid `spec` (x fastest) to `path` through MPI-IO, each
+/// rank giving the values of its box `mine` (x fastest within it; may be empty). Written to a
+/// temporary name that rank 0 renames onto `path` once every rank succeeded. Throws `Abort` on
+/// every rank on failure (and removes the temporary).
+template <class T>
+void write_collective(const std::string& path, const std::string& header, const GridSpec<T>& spec,
+                      const GridRange& mine, Span<const T> values, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  // A name unique to this run (rank 0's pid) beside the target, so a rename commits it.
+  long pid = long(::getpid());
+  MPI_Bcast(&pid, 1, MPI_LONG, 0, comm);
+  const std::string tmp = path + ".ebgeom-mpi-" + std::to_string(pid);
+  MPI_File fh = MPI_FILE_NULL;
+  const int orc =
+      MPI_File_open(comm, tmp.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &fh);
+  Status st;
+  if (orc != MPI_SUCCESS)
+    st = {cli::exit_output, path + ": cannot open for writing (" + error_string(orc) + ")"};
+  st = agree(st, comm);
+  if (!st) {
+    if (fh != MPI_FILE_NULL) MPI_File_close(&fh);
+    throw Abort{st};
+  }
+  const MPI_Datatype et = mpi_type<T>();
+  const MPI_Offset total =
+      MPI_Offset(header.size()) + MPI_Offset(spec.size()) * MPI_Offset(sizeof(T));
+  int rc = MPI_File_set_size(fh, total);
+  if (rc == MPI_SUCCESS && rank == 0)
+    rc = MPI_File_write_at(fh, 0, header.data(), int(header.size()), MPI_BYTE, MPI_STATUS_IGNORE);
+  MPI_Datatype file_type = MPI_DATATYPE_NULL, row = MPI_DATATYPE_NULL;
+  const auto d = mine.dims();
+  const bool empty = mine.size() == 0;
+  const std::size_t rows = empty ? 0 : d[1] * d[2];
+  if (rows > std::size_t(INT32_MAX)) {
+    st = {cli::exit_resource, path + ": a rank's part has over 2^31 rows; use more ranks"};
+    rc = MPI_SUCCESS;
+  }
+  if (!empty) {
+    const int sizes[3] = {int(spec.nz()), int(spec.ny()), int(spec.nx())};
+    const int sub[3] = {int(d[2]), int(d[1]), int(d[0])};
+    const int start[3] = {int(mine.lo[2]), int(mine.lo[1]), int(mine.lo[0])};
+    MPI_Type_create_subarray(3, sizes, sub, start, MPI_ORDER_C, et, &file_type);
+    MPI_Type_commit(&file_type);
+    MPI_Type_contiguous(int(d[0]), et, &row);
+    MPI_Type_commit(&row);
+  }
+  if (rc == MPI_SUCCESS)
+    rc = MPI_File_set_view(fh, MPI_Offset(header.size()), et, empty ? et : file_type, "native",
+                           MPI_INFO_NULL);
+  if (rc == MPI_SUCCESS)
+    rc = MPI_File_write_all(fh, values.data(), st && !empty ? int(rows) : 0, empty ? et : row,
+                            MPI_STATUS_IGNORE);
+  const int crc = MPI_File_close(&fh);
+  if (rc == MPI_SUCCESS) rc = crc;
+  if (!empty) {
+    MPI_Type_free(&file_type);
+    MPI_Type_free(&row);
+  }
+  if (st && rc != MPI_SUCCESS)
+    st = {cli::exit_output, path + ": write failed (" + error_string(rc) + ")"};
+  st = agree(st, comm);
+  if (st && rank == 0 && std::rename(tmp.c_str(), path.c_str()) != 0)
+    st = {cli::exit_output, path + ": cannot rename the temporary file onto it (" +
+                                std::string(std::strerror(errno)) + ")"};
+  st = agree(st, comm);
+  if (!st) {
+    if (rank == 0) MPI_File_delete(tmp.c_str(), MPI_INFO_NULL);
+    throw Abort{st};
+  }
+}
+
+} // namespace ebgeom::mpi

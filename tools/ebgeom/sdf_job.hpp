@@ -1,0 +1,159 @@
+#pragma once
+// The pieces of `ebgeom sdf` that `ebgeom-mpi sdf` shares: the options, the grid they describe,
+// and loading the input (mesh or scene) into a `Program<T>`. Both tools parse the same command
+// line into the same grid, so their values agree bit for bit.
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common.hpp"
+#include "ebgeom/eval/grid_spec.hpp"
+#include "mesh_input.hpp"
+#include "program.hpp"
+#include "scene.hpp"
+
+namespace ebgeom::cli {
+
+/// Options of `ebgeom sdf` (and `ebgeom-mpi sdf`).
+struct SdfOptions {
+  std::string input, output;
+  std::vector<std::size_t> res;
+  double dx = 0;
+  std::vector<double> box;
+  double pad = 0.1;
+  double band = 0;
+  std::string sign = "auto";
+  std::string precision = "float";
+  int threads = 0;
+  std::string png, slice = "z";
+  bool json = false, quiet = false, nodes = false;
+};
+
+/// Adds the options of `ebgeom sdf` to `sub`, writing into `*o`, with their validation.
+inline void add_sdf_options(CLI::App* sub, const std::shared_ptr<SdfOptions>& o) {
+  sub->add_option("INPUT", o->input, "mesh file (STL, PLY, OBJ, VTK) or scene file (.json)")
+      ->required();
+  sub->add_option("-o,--output", o->output,
+                  "output grid: .vti (ParaView), .npy (NumPy, shape (NZ, NY, NX)) or .raw "
+                  "(with a .json sidecar)")
+      ->required();
+  auto* res = sub->add_option("--res", o->res,
+                              "N cells on every axis, or NX NY NZ (default 64; cell-centred)")
+                  ->expected(1, 3);
+  auto* dx = sub->add_option("--dx", o->dx, "cubic cells of size H (the box grows to fit)")
+                 ->check(CLI::PositiveNumber);
+  res->excludes(dx);
+  sub->add_option("--box", o->box, "X0 Y0 Z0 X1 Y1 Z1 (default: bounding box + --pad)")
+      ->expected(6);
+  sub->add_option("--pad", o->pad, "padding per side, as a fraction of the extent")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  sub->add_option("--band", o->band,
+                  "narrow band of W times the largest cell spacing: exact inside, ±band outside")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--sign", o->sign,
+                  "sign mode for meshes: pseudonormal, winding, fast-winding, unsigned or auto "
+                  "(pseudonormal on closed manifold oriented meshes, fast-winding otherwise)")
+      ->capture_default_str();
+  sub->add_option("--precision", o->precision, "float or double (computation and output)")
+      ->check(CLI::IsMember({"float", "double"}))
+      ->capture_default_str();
+  sub->add_option("--threads", o->threads, "threads (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  auto* png = sub->add_option("--png", o->png, "also write a PNG slice of the grid");
+  sub->add_option("--slice", o->slice, "slice of the PNG: x, y or z, optionally =FRACTION")
+      ->needs(png)
+      ->capture_default_str();
+  sub->add_flag("--nodes", o->nodes, "node-centred samples (include the box faces)");
+  sub->add_flag("--json", o->json, "print a JSON summary on stdout");
+  sub->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
+  sub->callback([o] {
+    if (!o->res.empty() && o->res.size() != 1 && o->res.size() != 3)
+      throw CLI::ValidationError("--res", "expects N or NX NY NZ");
+    for (std::size_t n : o->res)
+      if (n < 1 || n > (std::size_t(1) << 21))
+        throw CLI::ValidationError("--res", "each resolution must be in 1..2097152");
+  });
+}
+
+/// The grid the options describe around `bounds` (the input's bounds). Throws CliError (usage or
+/// input).
+template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bounds) {
+  GridSpec<T> spec;
+  spec.centering = o.nodes ? Centering::node : Centering::cell;
+  if (!o.box.empty()) {
+    spec.box =
+        Aabb<T>({T(o.box[0]), T(o.box[1]), T(o.box[2])}, {T(o.box[3]), T(o.box[4]), T(o.box[5])});
+    for (int a = 0; a < 3; ++a)
+      if (!(spec.box.lo[a] < spec.box.hi[a]))
+        fail(exit_usage,
+             std::string("--box: X0 Y0 Z0 must be below X1 Y1 Z1 (axis ") + "xyz"[a] + ")");
+  } else {
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(bounds.lo[a]) || !std::isfinite(bounds.hi[a]))
+        fail(exit_usage, o.input + ": the input is unbounded (e.g. a plane); give --box");
+    if (bounds.is_empty()) fail(exit_input, o.input + ": the input is empty");
+    const Vec3<T> e = bounds.extent();
+    const T big = max_component(e) > T(0) ? max_component(e) : T(1);
+    Vec3<T> pad;
+    for (int a = 0; a < 3; ++a) pad[a] = T(o.pad) * (e[a] > big * T(1e-3) ? e[a] : big);
+    spec.box = Aabb<T>(bounds.lo - pad, bounds.hi + pad);
+  }
+  if (o.dx > 0) {
+    const Vec3<T> e = spec.box.extent();
+    for (int a = 0; a < 3; ++a) {
+      const double n = std::ceil(double(e[a]) / o.dx - 1e-9);
+      if (n > double(1 << 21)) fail(exit_usage, "--dx is too small for the box (over 2^21 cells)");
+      spec.dims[a] = std::max<std::size_t>(1, std::size_t(n)) + (o.nodes ? 1 : 0);
+      const std::size_t cells = o.nodes ? spec.dims[a] - 1 : spec.dims[a];
+      spec.box.hi[a] = spec.box.lo[a] + T(double(std::max<std::size_t>(cells, 1)) * o.dx);
+    }
+  } else if (o.res.size() == 3) {
+    spec.dims = {{o.res[0], o.res[1], o.res[2]}};
+  } else {
+    const std::size_t n = o.res.empty() ? 64 : o.res[0];
+    spec.dims = {{n, n, n}};
+  }
+  if (auto ok = spec.validate(); !ok) fail(exit_usage, ok.error().what());
+  return spec;
+}
+
+/// An input loaded for sampling, with the times its phases took.
+template <class T> struct SdfInput {
+  Program<T> prog;
+  SceneInfo info;
+  bool scene = false;
+  double parse_s = 0, build_s = 0;
+};
+
+/// Reads `o.input` (a scene by extension, otherwise a mesh with sign mode `sign`) into a
+/// `Program<T>`. Throws CliError (input, usage) with the reader's message.
+template <class T> SdfInput<T> load_sdf_input(const SdfOptions& o, SignMode sign) {
+  SdfInput<T> in;
+  in.scene = is_scene_path(o.input);
+  const double t0 = now_s();
+  double t1;
+  if (in.scene) {
+    const Json doc = read_json_file(o.input);
+    t1 = now_s();
+    in.prog = compile_scene<T>(doc, o.input, &in.info);
+  } else {
+    PolygonSoup<T> soup = load_mesh<T>(o.input);
+    t1 = now_s();
+    auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, o.input, sign));
+    in.prog.box = sdf->bounds();
+    in.prog.code.push_back({Op::mesh, 0, sign == SignMode::unsigned_distance ? 1u : 0u});
+    in.prog.scene_kind = sdf->sign_kind();
+    in.prog.meshes.push_back(std::move(sdf));
+  }
+  in.parse_s = t1 - t0;
+  in.build_s = now_s() - t1;
+  return in;
+}
+
+} // namespace ebgeom::cli
