@@ -210,7 +210,7 @@ template <class T> int run(const SdfOptions& o, const World& w) {
   MPI_Reduce(&inside, &ginside, 1, MPI_DOUBLE, MPI_SUM, 0, w.comm);
   const std::vector<double> evals = allgather(eval_s, w.comm);
   const std::vector<double> loads = allgather(in.parse_s + in.build_s, w.comm);
-  if (!root || o.quiet) return cli::exit_ok;
+  if (!root || (o.quiet && !o.json)) return cli::exit_ok;
 
   double emax = 0, esum = 0;
   for (double e : evals) {
