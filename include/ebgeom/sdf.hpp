@@ -10,4 +10,6 @@
 #include "ebgeom/sdf/csg.hpp"
 #include "ebgeom/sdf/normal.hpp"
 #include "ebgeom/sdf/shapes.hpp"
+#include "ebgeom/sdf/signed_mesh_sdf.hpp"
 #include "ebgeom/sdf/transforms.hpp"
+#include "ebgeom/sdf/winding.hpp"
