@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "ebgeom/sdf/bvh_union.hpp"
+#include "ebgeom/sdf/shapes.hpp"
 
 namespace {
 using T = double;
@@ -26,15 +27,7 @@ using ebgeom::Aabb;
 using ebgeom::SdfKind;
 using ebgeom::Vec3;
 
-/// Exact sphere SDF (the seeds' Sphere).
-struct Ball {
-  using scalar_type = T;
-  static constexpr SdfKind kind = SdfKind::exact;
-  Vec3<T> c;
-  T r;
-  T operator()(const Vec3<T>& p) const noexcept { return norm(p - c) - r; }
-  Aabb<T> bounds() const noexcept { return Aabb<T>::of(c).grown(r); }
-};
+using Ball = ebgeom::Sphere<T>; // exact
 
 /// The seeds' SDF interface: a polymorphic base held through shared_ptr.
 struct SignedDistanceFunction {

@@ -8,19 +8,13 @@
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
 #include "ebgeom/sdf/mesh_sdf.hpp"
+#include "ebgeom/sdf/shapes.hpp"
 #include "test_support.hpp"
 
 using namespace ebgeom;
 
 namespace {
-template <class T> struct Ball {
-  using scalar_type = T;
-  static constexpr SdfKind kind = SdfKind::exact;
-  Vec3<T> c;
-  T r;
-  T operator()(const Vec3<T>& p) const noexcept { return norm(p - c) - r; }
-  Aabb<T> bounds() const noexcept { return Aabb<T>::of(c).grown(r); }
-};
+template <class T> using Ball = Sphere<T>;
 /// The same ball declared as a bound: the union may not prune it.
 template <class T> struct SoftBall : Ball<T> { static constexpr SdfKind kind = SdfKind::bound; };
 template <class T> struct Slab { // unbounded: z < h
@@ -66,8 +60,8 @@ TYPED_TEST(BvhUnionTest, EqualsTheLinearUnionOnTheSeedsLattice) {
   }
   // Centres are inside (negative), order() maps leaf order back to the input.
   for (std::size_t i = 0; i < u.objects().size(); ++i)
-    EXPECT_EQ(u.objects()[i].c, balls[u.order()[i]].c);
-  EXPECT_EQ(u(balls[5].c), -T(0.02));
+    EXPECT_EQ(u.objects()[i].center, balls[u.order()[i]].center);
+  EXPECT_EQ(u(balls[5].center), -T(0.02));
 }
 
 TYPED_TEST(BvhUnionTest, OverlappingObjectsAndUnboundedOnes) {
