@@ -71,20 +71,28 @@ template <class T> constexpr T shrink_bound(T far2) noexcept {
   return far2 * (T(1) + T(64) * std::numeric_limits<T>::epsilon()) + std::numeric_limits<T>::min();
 }
 
+/// A subtree is skipped only when its box is farther than the best distance by more than a few
+/// ulps: a primitive's computed distance can come out slightly *below* the computed distance of
+/// its own box (rounding in a projection), and skipping on the exact comparison would then miss
+/// the minimum that a brute-force scan over the same kernel finds.
+template <class T> constexpr T prune_limit(T best2) noexcept {
+  return best2 * (T(1) + T(64) * std::numeric_limits<T>::epsilon());
+}
+
 /// Nearest-first branch and bound (see the file comment). `best2` is in/out: the initial bound and
 /// the final best squared distance the leaf callback reported.
 template <bool Shrink = false, class T, int K, class BV, class LeafFn>
 void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf) noexcept {
   if (bvh.root.is_empty()) return;
   if (bvh.root.is_leaf()) {
-    if (bvh.box.distance2(p) < best2) leaf(bvh.root.index, bvh.root.count, best2);
+    if (bvh.box.distance2(p) < prune_limit(best2)) leaf(bvh.root.index, bvh.root.count, best2);
     return;
   }
   FixedStack<Pending<T>, WideBvh<T, K, BV>::stack_capacity> todo;
   todo.push({bvh.root, T(0)});
   while (!todo.empty()) {
     const Pending<T> top = todo.pop();
-    if (!(top.dist2 < best2)) continue; // a closer hit arrived after this was pushed
+    if (!(top.dist2 < prune_limit(best2))) continue; // a closer hit arrived after the push
     if (top.ref.is_leaf()) {
       leaf(top.ref.index, top.ref.count, best2);
       continue;
@@ -103,8 +111,9 @@ void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& 
     // nearest pops first.
     Pending<T> c[K];
     int m = 0;
+    const T lim = prune_limit(best2);
     for (int k = 0; k < K; ++k) {
-      if (d2[k] < best2) {
+      if (d2[k] < lim) {
         Pending<T> e{n.child[k], d2[k]};
         int j = m++;
         while (j > 0 && c[j - 1].dist2 < e.dist2) {
@@ -127,7 +136,7 @@ void nearest_unordered(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2,
   todo.push({bvh.root, bvh.box.distance2(p)});
   while (!todo.empty()) {
     const Pending<T> top = todo.pop();
-    if (!(top.dist2 < best2)) continue;
+    if (!(top.dist2 < prune_limit(best2))) continue;
     if (top.ref.is_leaf()) {
       leaf(top.ref.index, top.ref.count, best2);
       continue;
@@ -135,8 +144,9 @@ void nearest_unordered(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2,
     const auto& n = bvh.nodes[top.ref.index];
     T d2[K];
     child_dist2(n, p, d2);
+    const T lim = prune_limit(best2);
     for (int k = 0; k < K; ++k)
-      if (d2[k] < best2) todo.push({n.child[k], d2[k]});
+      if (d2[k] < lim) todo.push({n.child[k], d2[k]});
   }
 }
 
@@ -155,7 +165,8 @@ void nearest_recursive_at(const WideBvh<T, K, BV>& bvh, const ChildRef ref, cons
   for (int k = 0; k < K; ++k) order[k] = k;
   std::sort(order, order + K, [&](int a, int b) { return d2[a] < d2[b]; });
   for (int j = 0; j < K; ++j)
-    if (d2[order[j]] < best2) nearest_recursive_at(bvh, n.child[order[j]], p, best2, leaf);
+    if (d2[order[j]] < prune_limit(best2))
+      nearest_recursive_at(bvh, n.child[order[j]], p, best2, leaf);
 }
 } // namespace detail
 
@@ -163,7 +174,7 @@ void nearest_recursive_at(const WideBvh<T, K, BV>& bvh, const ChildRef ref, cons
 template <class T, int K, class BV, class LeafFn>
 void nearest_recursive(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2,
                        LeafFn&& leaf) noexcept {
-  if (bvh.root.is_empty() || !(bvh.box.distance2(p) < best2)) return;
+  if (bvh.root.is_empty() || !(bvh.box.distance2(p) < prune_limit(best2))) return;
   detail::nearest_recursive_at(bvh, bvh.root, p, best2, leaf);
 }
 
