@@ -75,24 +75,31 @@ template <class T> constexpr T shrink_bound(T far2) noexcept {
 /// ulps: a primitive's computed distance can come out slightly *below* the computed distance of
 /// its own box (rounding in a projection), and skipping on the exact comparison would then miss
 /// the minimum that a brute-force scan over the same kernel finds.
-template <class T> constexpr T prune_limit(T best2) noexcept {
-  return best2 * (T(1) + T(64) * std::numeric_limits<T>::epsilon());
+/// `abs_slack` (>= 0) widens it by an absolute amount: the rounding of a primitive's squared
+/// distance near its surface is absolute (about eps · size²), not relative, and callers that need
+/// exact ties (mesh SDFs) pass a bound on it. A box at distance 0 is always visited.
+template <class T> constexpr T prune_limit(T best2, T abs_slack = T(0)) noexcept {
+  return best2 * (T(1) + T(64) * std::numeric_limits<T>::epsilon()) + abs_slack +
+         std::numeric_limits<T>::min();
 }
 
 /// Nearest-first branch and bound (see the file comment). `best2` is in/out: the initial bound and
 /// the final best squared distance the leaf callback reported.
 template <bool Shrink = false, class T, int K, class BV, class LeafFn>
-void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf) noexcept {
+void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf,
+             T abs_slack = T(0)) noexcept {
   if (bvh.root.is_empty()) return;
   if (bvh.root.is_leaf()) {
-    if (bvh.box.distance2(p) < prune_limit(best2)) leaf(bvh.root.index, bvh.root.count, best2);
+    if (bvh.box.distance2(p) < prune_limit(best2, abs_slack))
+      leaf(bvh.root.index, bvh.root.count, best2);
     return;
   }
   FixedStack<Pending<T>, WideBvh<T, K, BV>::stack_capacity> todo;
   todo.push({bvh.root, T(0)});
   while (!todo.empty()) {
     const Pending<T> top = todo.pop();
-    if (!(top.dist2 < prune_limit(best2))) continue; // a closer hit arrived after the push
+    if (!(top.dist2 < prune_limit(best2, abs_slack)))
+      continue; // a closer hit arrived after the push
     if (top.ref.is_leaf()) {
       leaf(top.ref.index, top.ref.count, best2);
       continue;
@@ -111,7 +118,7 @@ void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& 
     // nearest pops first.
     Pending<T> c[K];
     int m = 0;
-    const T lim = prune_limit(best2);
+    const T lim = prune_limit(best2, abs_slack);
     for (int k = 0; k < K; ++k) {
       if (d2[k] < lim) {
         Pending<T> e{n.child[k], d2[k]};

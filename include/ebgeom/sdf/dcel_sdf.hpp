@@ -6,6 +6,7 @@
 /// bit (same face kernel `signed_distance_to_face`; only the face reported on exact ties may
 /// differ).
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -65,6 +66,10 @@ template <class T, int K = 4, class BV = Aabb<T>> class DcelSdf {
         return BV::of_points(Span<const Vec3<T>>(pts));
       });
     }
+    const Aabb<T> box = s.bvh_.box;
+    const T sc = std::max(
+        {max_component(abs(box.lo)), max_component(abs(box.hi)), max_component(box.extent())});
+    s.slack_ = T(64) * std::numeric_limits<T>::epsilon() * sc * sc;
     return s;
   }
 
@@ -88,16 +93,21 @@ template <class T, int K = 4, class BV = Aabb<T>> class DcelSdf {
                              invalid_index,
                              invalid_index};
     T best2 = std::numeric_limits<T>::infinity();
-    bvh::nearest<true>(bvh_, p, best2, [&](std::uint32_t first, std::uint32_t count, T& b2) {
-      for (std::uint32_t s = first; s < first + count; ++s) {
-        const DcelClosestPoint<T> c =
-            signed_distance_to_face(mesh_, Index(bvh_.prim[s]), p, inside_test_);
-        if (c.distance2 < b2) {
-          b2 = c.distance2;
-          best = c;
-        }
-      }
-    });
+    bvh::nearest<true>(
+        bvh_, p, best2,
+        [&](std::uint32_t first, std::uint32_t count, T& b2) {
+          for (std::uint32_t s = first; s < first + count; ++s) {
+            const DcelClosestPoint<T> c =
+                signed_distance_to_face(mesh_, Index(bvh_.prim[s]), p, inside_test_);
+            // Exact ties go to the lowest face index, as in the brute force.
+            if (c.distance2 < b2 ||
+                (c.distance2 == b2 && best.face != invalid_index && c.face < best.face)) {
+              b2 = c.distance2;
+              best = c;
+            }
+          }
+        },
+        slack_);
     return best;
   }
 
@@ -108,6 +118,7 @@ template <class T, int K = 4, class BV = Aabb<T>> class DcelSdf {
  private:
   HalfEdgeMesh<T> mesh_;
   InsideTest inside_test_ = InsideTest::crossing_number;
+  T slack_ = 0; ///< absolute pruning slack (see MeshSdf): exact ties are never pruned
   bvh::WideBvh<T, K, BV> bvh_;
 };
 

@@ -165,6 +165,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     s.bvh_ = bvh::flatten<K>(
         bvh::build(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(centroids), options));
     s.pack_blocks();
+    s.slack_ = rounding_slack(s.bvh_.box);
     return s;
   }
 
@@ -298,20 +299,28 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
   /// Nearest triangle slot (block lane) by squared distance; `best2` is the initial bound.
   void nearest_slot(const Vec3<T>& p, T& best2, std::uint32_t& best) const noexcept {
     const TriBlock<T, W>* blocks = blocks_.data();
-    bvh::nearest<true>(bvh_, p, best2,
-                       [&](std::uint32_t first_block, std::uint32_t count, T& b2) noexcept {
-                         const std::uint32_t nb = (count + std::uint32_t(W) - 1) / std::uint32_t(W);
-                         for (std::uint32_t i = 0; i < nb; ++i) {
-                           T d2[W];
-                           block_distance2(blocks[first_block + i], p, d2);
-                           for (int l = 0; l < W; ++l) {
-                             if (d2[l] < b2) {
-                               b2 = d2[l];
-                               best = (first_block + i) * std::uint32_t(W) + std::uint32_t(l);
-                             }
-                           }
-                         }
-                       });
+    const std::uint32_t* tri = block_tri_.data();
+    bvh::nearest<true>(
+        bvh_, p, best2,
+        [&](std::uint32_t first_block, std::uint32_t count, T& b2) noexcept {
+          const std::uint32_t nb = (count + std::uint32_t(W) - 1) / std::uint32_t(W);
+          for (std::uint32_t i = 0; i < nb; ++i) {
+            T d2[W];
+            block_distance2(blocks[first_block + i], p, d2);
+            for (int l = 0; l < W; ++l) {
+              const std::uint32_t slot = (first_block + i) * std::uint32_t(W) + std::uint32_t(l);
+              // Exact ties go to the lowest triangle index, as in the brute force,
+              // so even the reported triangle (and, on meshes where tied features
+              // disagree, the sign) is the same.
+              if (d2[l] < b2 ||
+                  (d2[l] == b2 && best != bvh::ChildRef::none && tri[slot] < tri[best])) {
+                b2 = d2[l];
+                best = slot;
+              }
+            }
+          }
+        },
+        slack_);
   }
 
   MeshClosestPoint<T> search(const Vec3<T>& p, T bound2) const noexcept {
@@ -332,7 +341,16 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     return r;
   }
 
+  /// Absolute pruning slack: a bound on the rounding of a triangle's squared distance near the
+  /// surface (about eps · size²), so ties with the brute force are never pruned away.
+  static T rounding_slack(const Aabb<T>& box) noexcept {
+    const T s = std::max(
+        {max_component(abs(box.lo)), max_component(abs(box.hi)), max_component(box.extent())});
+    return T(64) * std::numeric_limits<T>::epsilon() * s * s;
+  }
+
   TriangleMesh<T> mesh_;
+  T slack_ = 0;
   bvh::WideBvh<T, K> bvh_;
   std::vector<TriBlock<T, W>> blocks_;
   std::vector<std::uint32_t> block_tri_; ///< triangle id of each block lane
