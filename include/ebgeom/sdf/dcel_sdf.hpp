@@ -3,8 +3,8 @@
 /// `DcelSdf<T, K, BV>`: exact signed distance to a half-edge (DCEL) mesh of planar polygons through
 /// a K-wide BVH over its faces, with boxes (`Aabb<T>`, default) or spheres (`BoundingSphere<T>`)
 /// as bounding volumes, as in the seeds' `FastMeshSDF`. Equal to `BruteForceDcelSdf` to the last
-/// bit (same face kernel `signed_distance_to_face`; only the face reported on exact ties may
-/// differ).
+/// bit, reported face included (same face kernel `signed_distance_to_face`; exact ties go to the
+/// lowest face index in both).
 
 #include <algorithm>
 #include <cstdint>

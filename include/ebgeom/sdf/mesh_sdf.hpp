@@ -181,7 +181,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
   T operator()(const Vec3<T>& p) const noexcept { return closest(p).distance; }
 
   /// Closest point, triangle, feature and signed distance. Equal to
-  /// `BruteForceMeshSdf::closest` (distance bit for bit; the triangle may differ on exact ties).
+  /// `BruteForceMeshSdf::closest` bit for bit, triangle included (exact ties: lowest index).
   MeshClosestPoint<T> closest(const Vec3<T>& p) const noexcept {
     return search(p, std::numeric_limits<T>::infinity());
   }
