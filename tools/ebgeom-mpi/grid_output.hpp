@@ -2,9 +2,11 @@
 // Distributed grid output of ebgeom-mpi:
 //  - `.pvti`: one VTK ImageData piece per rank (`OUT_<rank>.vti` beside `OUT.pvti`), each piece
 //    holding its box plus one layer of samples on its upper faces (VTK pieces share their
-//    boundary points, otherwise ParaView shows a gap of one cell between pieces);
+//    boundary points, otherwise ParaView shows a gap of one cell between pieces); the bytes come
+//    from the library's `write_vti_piece` and `write_pvti`;
 //  - `.npy` / `.raw`: one file written collectively with MPI-IO; rank 0 writes the header, every
-//    rank writes its box through a subarray file view. The bytes equal the serial writers'.
+//    rank writes its box through a subarray file view (`npy_header` of the library). The bytes
+//    equal the serial writers'.
 // Every output is written under a temporary name and renamed when all ranks succeeded.
 
 #include <mpi.h>
@@ -27,37 +29,6 @@ namespace ebgeom::mpi {
 /// Output kinds of ebgeom-mpi, by extension.
 enum class OutputKind { pvti, npy, raw };
 
-/// The NumPy 1.0 header `write_npy` writes for `shape` (slowest first) and `dtype`.
-inline std::string npy_header(const std::vector<std::size_t>& shape, DType dtype) {
-  std::string dict = "{'descr': '";
-  dict += detail::host_is_little_endian() ? '<' : '>';
-  dict += dtype == DType::float32 ? "f4" : "f8";
-  dict += "', 'fortran_order': False, 'shape': (";
-  for (std::size_t i = 0; i < shape.size(); ++i) {
-    dict += std::to_string(shape[i]);
-    if (shape.size() == 1 || i + 1 < shape.size()) dict += ",";
-    if (i + 1 < shape.size()) dict += " ";
-  }
-  dict += "), }";
-  std::size_t total = 10 + dict.size() + 1;
-  total = (total + 63) / 64 * 64;
-  dict.append(total - 10 - dict.size() - 1, ' ');
-  dict += '\n';
-  const std::size_t hlen = dict.size();
-  std::string head = "\x93NUMPY";
-  head += char(1);
-  head += char(0);
-  head += char(hlen & 0xff);
-  head += char((hlen >> 8) & 0xff);
-  return head + dict;
-}
-
-inline std::string extent_text(const GridRange& r) {
-  return std::to_string(r.lo[0]) + ' ' + std::to_string(r.hi[0] - 1) + ' ' +
-         std::to_string(r.lo[1]) + ' ' + std::to_string(r.hi[1] - 1) + ' ' +
-         std::to_string(r.lo[2]) + ' ' + std::to_string(r.hi[2] - 1);
-}
-
 /// The samples a .pvti piece of `owned` holds: `owned` plus one layer on each upper face that is
 /// not the grid's.
 inline GridRange piece_range(const GridRange& owned, const std::array<std::size_t, 3>& dims) {
@@ -72,75 +43,17 @@ inline std::string piece_path(const std::string& pvti, int rank) {
   return (p.parent_path() / (p.stem().string() + "_" + std::to_string(rank) + ".vti")).string();
 }
 
-/// Writes one VTK ImageData piece: `values` over `piece` (global extents), origin and spacing of
-/// `spec`, so the piece opens on its own at the right place too. Atomic. Errors: `io`.
-template <class T>
-Result<Ok> write_vti_piece(const std::string& path, const GridSpec<T>& spec, const GridRange& piece,
-                           Span<const T> values, const WriteGridOptions& opt) {
-  const Vec3<T> o = spec.origin(), h = spec.spacing();
-  auto xml = detail::number_stream();
-  const std::string extent = extent_text(piece);
-  xml << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\""
-      << (detail::host_is_little_endian() ? "LittleEndian" : "BigEndian")
-      << "\" header_type=\"UInt64\">\n"
-      << "  <ImageData WholeExtent=\"" << extent << "\" Origin=\"" << double(o.x) << ' '
-      << double(o.y) << ' ' << double(o.z) << "\" Spacing=\"" << double(h.x) << ' ' << double(h.y)
-      << ' ' << double(h.z) << "\">\n"
-      << "    <Piece Extent=\"" << extent << "\">\n"
-      << "      <PointData Scalars=\"" << detail::xml_escape(opt.name) << "\">\n"
-      << "        <DataArray type=\"" << (opt.dtype == DType::float32 ? "Float32" : "Float64")
-      << "\" Name=\"" << detail::xml_escape(opt.name)
-      << "\" NumberOfComponents=\"1\" format=\"appended\" offset=\"0\"/>\n"
-      << "      </PointData>\n"
-      << "      <CellData/>\n"
-      << "    </Piece>\n"
-      << "  </ImageData>\n"
-      << "  <AppendedData encoding=\"raw\">\n   _";
-  detail::AtomicFile f(path);
-  if (!f.is_open()) return f.open_error();
-  auto& os = f.stream();
-  const std::string head = xml.str();
-  os.write(head.data(), std::streamsize(head.size()));
-  const std::uint64_t nbytes = std::uint64_t(values.size()) * dtype_size(opt.dtype);
-  os.write(reinterpret_cast<const char*>(&nbytes), sizeof nbytes);
-  detail::write_values(os, values, opt.dtype);
-  const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
-  os.write(tail.data(), std::streamsize(tail.size()));
-  if (auto ok = f.close(); !ok) return ok;
-  return f.commit();
-}
-
-/// Writes the `.pvti` naming `pieces[r]` (empty ranges are left out) as `OUT_<r>.vti`. Atomic.
-template <class T>
-Result<Ok> write_pvti(const std::string& path, const GridSpec<T>& spec,
-                      const std::vector<GridRange>& pieces, const WriteGridOptions& opt) {
-  const Vec3<T> o = spec.origin(), h = spec.spacing();
-  auto xml = detail::number_stream();
-  xml << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"PImageData\" version=\"1.0\" byte_order=\""
-      << (detail::host_is_little_endian() ? "LittleEndian" : "BigEndian")
-      << "\" header_type=\"UInt64\">\n"
-      << "  <PImageData WholeExtent=\"" << extent_text(GridRange::all(spec))
-      << "\" GhostLevel=\"0\" Origin=\"" << double(o.x) << ' ' << double(o.y) << ' ' << double(o.z)
-      << "\" Spacing=\"" << double(h.x) << ' ' << double(h.y) << ' ' << double(h.z) << "\">\n"
-      << "    <PPointData Scalars=\"" << detail::xml_escape(opt.name) << "\">\n"
-      << "      <PDataArray type=\"" << (opt.dtype == DType::float32 ? "Float32" : "Float64")
-      << "\" Name=\"" << detail::xml_escape(opt.name) << "\" NumberOfComponents=\"1\"/>\n"
-      << "    </PPointData>\n";
-  for (std::size_t r = 0; r < pieces.size(); ++r) {
-    if (pieces[r].size() == 0) continue;
-    const std::string name = std::filesystem::path(piece_path(path, int(r))).filename().string();
-    xml << "    <Piece Extent=\"" << extent_text(pieces[r]) << "\" Source=\""
-        << detail::xml_escape(name) << "\"/>\n";
+/// The `.pvti` entries of the parts' pieces (`piece_range` of each non-empty part `r`, stored as
+/// `OUT_<r>.vti`).
+inline std::vector<PvtiPiece> pvti_pieces(const std::string& pvti, const Decomposition& dec,
+                                          const std::array<std::size_t, 3>& dims) {
+  std::vector<PvtiPiece> pieces;
+  for (std::size_t r = 0; r < dec.parts.size(); ++r) {
+    if (dec.parts[r].empty()) continue;
+    pieces.push_back({piece_range(dec.parts[r].range, dims),
+                      std::filesystem::path(piece_path(pvti, int(r))).filename().string()});
   }
-  xml << "  </PImageData>\n</VTKFile>\n";
-  detail::AtomicFile f(path);
-  if (!f.is_open()) return f.open_error();
-  const std::string text = xml.str();
-  f.stream().write(text.data(), std::streamsize(text.size()));
-  if (auto ok = f.close(); !ok) return ok;
-  return f.commit();
+  return pieces;
 }
 
 template <class T> MPI_Datatype mpi_type() { return sizeof(T) == 4 ? MPI_FLOAT : MPI_DOUBLE; }

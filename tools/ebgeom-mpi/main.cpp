@@ -152,15 +152,12 @@ template <class T> int run(const SdfOptions& o, const World& w) {
     const std::string piece = piece_path(o.output, w.rank);
     Status st = guarded([&] {
       if (evaluated.size() == 0) return;
-      auto ok = write_vti_piece(piece, spec, evaluated, v, wopt);
+      auto ok = write_vti_piece(piece, spec, evaluated, evaluated, v, wopt);
       if (!ok) fail(cli::exit_output, ok.error().what());
     });
     st = agree(st, w.comm);
     if (st && root) {
-      std::vector<GridRange> pieces;
-      for (const auto& p : dec.parts)
-        pieces.push_back(p.empty() ? GridRange{} : piece_range(p.range, spec.dims));
-      auto ok = write_pvti(o.output, spec, pieces, wopt);
+      auto ok = write_pvti(o.output, spec, pvti_pieces(o.output, dec, spec.dims), wopt);
       if (!ok) st = {cli::exit_output, ok.error().what()};
     }
     st = agree(st, w.comm);
@@ -170,7 +167,9 @@ template <class T> int run(const SdfOptions& o, const World& w) {
     }
   } else {
     const std::string header =
-        kind == OutputKind::npy ? npy_header({spec.nz(), spec.ny(), spec.nx()}, wopt.dtype) : "";
+        kind == OutputKind::npy
+            ? npy_header(npy_descr(wopt.dtype), {spec.nz(), spec.ny(), spec.nx()})
+            : "";
     if (kind == OutputKind::raw) {
       Status st;
       if (root) {

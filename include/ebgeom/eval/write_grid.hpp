@@ -2,7 +2,8 @@
 /// \file
 /// Writers for dense grids (and plain arrays), dependency-free:
 ///  - `.vti`: VTK XML ImageData, one point-data array, binary appended raw data (opens in
-///    ParaView; `Origin` is the first sample, so cell-centred grids contour correctly);
+///    ParaView; `Origin` is the first sample, so cell-centred grids contour correctly); a piece of
+///    a grid (`write_vti_piece`) and the `.pvti` that assembles pieces (`write_pvti`);
 ///  - `.npy`: NumPy format 1.0, float32 or float64, shape `(nz, ny, nx)`, C order;
 ///  - `.raw` + `.json` sidecar: the bare values (x fastest) and a JSON file describing dims,
 ///    spacing, origin, box, dtype, byte order and centring.
@@ -198,21 +199,18 @@ template <class T> Result<Ok> check_grid_values(const GridSpec<T>& spec, std::si
 
 } // namespace detail
 
-/// Writes an N-dimensional array as a NumPy `.npy` file (format 1.0, C order, host byte order,
-/// header padded to 64 bytes). `shape` lists the dimensions, slowest first; their product must
-/// equal `values.size()`. Atomic (temporary + rename). Errors: `invalid_argument`, `io`.
-template <class T>
-Result<Ok> write_npy(const std::string& path, Span<const T> values,
-                     const std::vector<std::size_t>& shape, DType dtype = DType::float32) {
-  std::size_t count = 1;
-  for (std::size_t d : shape) count *= d;
-  if (count != values.size())
-    return make_error(ErrorCode::invalid_argument, path, ": shape holds ", count, " elements but ",
-                      values.size(), " values were given");
-  std::string dict = "{'descr': '";
-  dict += detail::host_is_little_endian() ? '<' : '>';
-  dict += dtype == DType::float32 ? "f4" : "f8";
-  dict += "', 'fortran_order': False, 'shape': (";
+/// NumPy type string of `dtype` in host byte order: `<f4`, `<f8` (`>` on big-endian hosts).
+inline std::string npy_descr(DType dtype) {
+  std::string d(1, detail::host_is_little_endian() ? '<' : '>');
+  return d + (dtype == DType::float32 ? "f4" : "f8");
+}
+
+/// The NumPy format 1.0 header of a C-order array of type `descr` (e.g. `<f4`, `<u4`, `<U4`) and
+/// `shape` (slowest first; empty for a 0-d array): magic, version, length and the dict, padded
+/// with spaces and a newline so the data starts at a multiple of 64 bytes. The array's bytes
+/// follow it directly.
+inline std::string npy_header(const std::string& descr, const std::vector<std::size_t>& shape) {
+  std::string dict = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': (";
   for (std::size_t i = 0; i < shape.size(); ++i) {
     dict += std::to_string(shape[i]);
     if (shape.size() == 1 || i + 1 < shape.size()) dict += ",";
@@ -224,22 +222,32 @@ Result<Ok> write_npy(const std::string& path, Span<const T> values,
   total = (total + 63) / 64 * 64;
   dict.append(total - 10 - dict.size() - 1, ' ');
   dict += '\n';
+  const std::size_t hlen = dict.size();
+  std::string head = "\x93NUMPY";
+  head += char(1);
+  head += char(0);
+  head += char(hlen & 0xff);
+  head += char((hlen >> 8) & 0xff);
+  return head + dict;
+}
+
+/// Writes an N-dimensional array as a NumPy `.npy` file (format 1.0, C order, host byte order,
+/// header padded to 64 bytes, `npy_header`). `shape` lists the dimensions, slowest first; their
+/// product must equal `values.size()`. Atomic (temporary + rename). Errors: `invalid_argument`,
+/// `io`.
+template <class T>
+Result<Ok> write_npy(const std::string& path, Span<const T> values,
+                     const std::vector<std::size_t>& shape, DType dtype = DType::float32) {
+  std::size_t count = 1;
+  for (std::size_t d : shape) count *= d;
+  if (count != values.size())
+    return make_error(ErrorCode::invalid_argument, path, ": shape holds ", count, " elements but ",
+                      values.size(), " values were given");
+  const std::string head = npy_header(npy_descr(dtype), shape);
   detail::AtomicFile f(path);
   if (!f.is_open()) return f.open_error();
   auto& os = f.stream();
-  const std::uint16_t hlen = static_cast<std::uint16_t>(dict.size());
-  const unsigned char head[10] = {0x93,
-                                  'N',
-                                  'U',
-                                  'M',
-                                  'P',
-                                  'Y',
-                                  1,
-                                  0,
-                                  static_cast<unsigned char>(hlen & 0xff),
-                                  static_cast<unsigned char>(hlen >> 8)};
-  os.write(reinterpret_cast<const char*>(head), 10);
-  os.write(dict.data(), std::streamsize(dict.size()));
+  os.write(head.data(), std::streamsize(head.size()));
   detail::write_values(os, values, dtype);
   if (auto ok = f.close(); !ok) return ok;
   return f.commit();
@@ -253,29 +261,62 @@ Result<Ok> write_npy(const std::string& path, const GridSpec<T>& spec, Span<cons
   return write_npy(path, values, {spec.nz(), spec.ny(), spec.nx()}, opt.dtype);
 }
 
-/// Writes a grid as VTK XML ImageData (`.vti`) with one point-data array `opt.name`, raw binary
-/// appended data (UInt64 header). `Origin` is the first sample and `Spacing` the sample spacing,
-/// so the samples are the VTK points whatever the centring. Atomic. Errors: `invalid_argument`,
-/// `io`.
+namespace detail {
+
+/// VTK extent text of the samples `r`: `i0 i1 j0 j1 k0 k1`, inclusive.
+inline std::string vtk_extent(const GridRange& r) {
+  return std::to_string(r.lo[0]) + ' ' + std::to_string(r.hi[0] - 1) + ' ' +
+         std::to_string(r.lo[1]) + ' ' + std::to_string(r.hi[1] - 1) + ' ' +
+         std::to_string(r.lo[2]) + ' ' + std::to_string(r.hi[2] - 1);
+}
+
+/// The `<?xml?>` line and the `<VTKFile>` tag of a file of `type` (`ImageData`, `PImageData`),
+/// then the type's element opened with `WholeExtent` `whole`, the attributes `extra` (with a
+/// leading space, or empty) and `spec`'s origin and spacing.
 template <class T>
-Result<Ok> write_vti(const std::string& path, const GridSpec<T>& spec, Span<const T> values,
-                     const WriteGridOptions& opt = {}) {
-  if (auto ok = detail::check_grid_values(spec, values.size()); !ok) return ok;
+void vtk_image_head(std::ostream& xml, const char* type, const GridSpec<T>& spec,
+                    const GridRange& whole, const char* extra) {
   const Vec3<T> o = spec.origin(), h = spec.spacing();
-  auto xml = detail::number_stream();
-  const std::string extent = "0 " + std::to_string(spec.nx() - 1) + " 0 " +
-                             std::to_string(spec.ny() - 1) + " 0 " + std::to_string(spec.nz() - 1);
   xml << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\""
-      << (detail::host_is_little_endian() ? "LittleEndian" : "BigEndian")
-      << "\" header_type=\"UInt64\">\n"
-      << "  <ImageData WholeExtent=\"" << extent << "\" Origin=\"" << double(o.x) << ' '
-      << double(o.y) << ' ' << double(o.z) << "\" Spacing=\"" << double(h.x) << ' ' << double(h.y)
-      << ' ' << double(h.z) << "\">\n"
-      << "    <Piece Extent=\"" << extent << "\">\n"
+      << "<VTKFile type=\"" << type << "\" version=\"1.0\" byte_order=\""
+      << (host_is_little_endian() ? "LittleEndian" : "BigEndian") << "\" header_type=\"UInt64\">\n"
+      << "  <" << type << " WholeExtent=\"" << vtk_extent(whole) << '"' << extra << " Origin=\""
+      << double(o.x) << ' ' << double(o.y) << ' ' << double(o.z) << "\" Spacing=\"" << double(h.x)
+      << ' ' << double(h.y) << ' ' << double(h.z) << "\">\n";
+}
+
+inline const char* vtk_type(DType d) noexcept {
+  return d == DType::float32 ? "Float32" : "Float64";
+}
+
+} // namespace detail
+
+/// Writes VTK XML ImageData (`.vti`) holding the samples `piece` of `spec` (`values`, x fastest
+/// within `piece`) under a `WholeExtent` of `whole`, which must contain `piece`: pass the same
+/// range for a file that stands on its own, the grid's for a piece of a larger one. One point-data
+/// array `opt.name`, raw binary appended data (UInt64 header). `Origin` is the grid's first sample
+/// and `Spacing` the sample spacing, so a piece lands where it belongs. Atomic. Errors:
+/// `invalid_argument`, `io`.
+template <class T>
+Result<Ok> write_vti_piece(const std::string& path, const GridSpec<T>& spec, const GridRange& whole,
+                           const GridRange& piece, Span<const T> values,
+                           const WriteGridOptions& opt = {}) {
+  if (auto ok = whole.validate(spec); !ok) return ok;
+  if (auto ok = piece.validate(spec); !ok) return ok;
+  for (int a = 0; a < 3; ++a)
+    if (piece.lo[a] < whole.lo[a] || piece.hi[a] > whole.hi[a])
+      return make_error(ErrorCode::invalid_argument, path, ": the piece's extent ",
+                        detail::vtk_extent(piece), " is not inside the whole extent ",
+                        detail::vtk_extent(whole));
+  if (values.size() != piece.size())
+    return make_error(ErrorCode::invalid_argument, "the piece has ", piece.size(), " samples but ",
+                      values.size(), " values were given");
+  auto xml = detail::number_stream();
+  detail::vtk_image_head(xml, "ImageData", spec, whole, "");
+  xml << "    <Piece Extent=\"" << detail::vtk_extent(piece) << "\">\n"
       << "      <PointData Scalars=\"" << detail::xml_escape(opt.name) << "\">\n"
-      << "        <DataArray type=\"" << (opt.dtype == DType::float32 ? "Float32" : "Float64")
-      << "\" Name=\"" << detail::xml_escape(opt.name)
+      << "        <DataArray type=\"" << detail::vtk_type(opt.dtype) << "\" Name=\""
+      << detail::xml_escape(opt.name)
       << "\" NumberOfComponents=\"1\" format=\"appended\" offset=\"0\"/>\n"
       << "      </PointData>\n"
       << "      <CellData/>\n"
@@ -292,6 +333,48 @@ Result<Ok> write_vti(const std::string& path, const GridSpec<T>& spec, Span<cons
   detail::write_values(os, values, opt.dtype);
   const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
   os.write(tail.data(), std::streamsize(tail.size()));
+  if (auto ok = f.close(); !ok) return ok;
+  return f.commit();
+}
+
+/// Writes a grid as VTK XML ImageData (`.vti`): `write_vti_piece` of the whole grid.
+template <class T>
+Result<Ok> write_vti(const std::string& path, const GridSpec<T>& spec, Span<const T> values,
+                     const WriteGridOptions& opt = {}) {
+  if (auto ok = detail::check_grid_values(spec, values.size()); !ok) return ok;
+  const GridRange all = GridRange::all(spec);
+  return write_vti_piece(path, spec, all, all, values, opt);
+}
+
+/// One piece named by a `.pvti`: its samples and its file, relative to the `.pvti`'s folder.
+struct PvtiPiece {
+  GridRange extent;
+  std::string source;
+};
+
+/// Writes the parallel VTK ImageData file (`.pvti`) of `spec` assembling `pieces` (each written
+/// by `write_vti_piece`; VTK pieces must share their boundary samples, or ParaView shows gaps).
+/// Ghost level 0, one point-data array `opt.name`. Atomic. Errors: `invalid_argument`, `io`.
+template <class T>
+Result<Ok> write_pvti(const std::string& path, const GridSpec<T>& spec,
+                      const std::vector<PvtiPiece>& pieces, const WriteGridOptions& opt = {}) {
+  if (auto ok = spec.validate(); !ok) return ok;
+  for (const PvtiPiece& p : pieces)
+    if (auto ok = p.extent.validate(spec); !ok) return ok;
+  auto xml = detail::number_stream();
+  detail::vtk_image_head(xml, "PImageData", spec, GridRange::all(spec), " GhostLevel=\"0\"");
+  xml << "    <PPointData Scalars=\"" << detail::xml_escape(opt.name) << "\">\n"
+      << "      <PDataArray type=\"" << detail::vtk_type(opt.dtype) << "\" Name=\""
+      << detail::xml_escape(opt.name) << "\" NumberOfComponents=\"1\"/>\n"
+      << "    </PPointData>\n";
+  for (const PvtiPiece& p : pieces)
+    xml << "    <Piece Extent=\"" << detail::vtk_extent(p.extent) << "\" Source=\""
+        << detail::xml_escape(p.source) << "\"/>\n";
+  xml << "  </PImageData>\n</VTKFile>\n";
+  detail::AtomicFile f(path);
+  if (!f.is_open()) return f.open_error();
+  const std::string text = xml.str();
+  f.stream().write(text.data(), std::streamsize(text.size()));
   if (auto ok = f.close(); !ok) return ok;
   return f.commit();
 }

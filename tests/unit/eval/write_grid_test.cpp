@@ -171,3 +171,69 @@ TEST(WriteGrid, ErrorsLeaveNoFileBehind) {
   EXPECT_FALSE(test::file_exists(path + ".ebgeom-tmp"));
   EXPECT_EQ(raw_sidecar_path("dir.v2/out"), "dir.v2/out.json");
 }
+
+TYPED_TEST(WriteGridTest, VtiPieceAndPvtiDescribeTheirPartOfTheGrid) {
+  using T = TypeParam;
+  Fixture<T> f;
+  // The whole grid as one piece is the .vti byte for byte.
+  const GridRange all = GridRange::all(f.spec);
+  const std::string whole = temp_path("whole.vti"), piece = temp_path("piece.vti");
+  ASSERT_TRUE(write_vti(whole, f.spec, Span<const T>(f.values)));
+  ASSERT_TRUE(write_vti_piece(piece, f.spec, all, all, Span<const T>(f.values)));
+  EXPECT_EQ(slurp(whole), slurp(piece));
+  // Samples [1, 4) x [2, 7) x [0, 2), declared inside the whole grid.
+  const GridRange r{{{1, 2, 0}}, {{4, 7, 2}}};
+  std::vector<T> sub;
+  for (std::size_t k = r.lo[2]; k < r.hi[2]; ++k)
+    for (std::size_t j = r.lo[1]; j < r.hi[1]; ++j)
+      for (std::size_t i = r.lo[0]; i < r.hi[0]; ++i)
+        sub.push_back(f.values[f.spec.index(i, j, k)]);
+  WriteGridOptions opt;
+  opt.dtype = DType::float64;
+  ASSERT_TRUE(write_vti_piece(piece, f.spec, all, r, Span<const T>(sub), opt));
+  const std::string bytes = slurp(piece);
+  EXPECT_NE(bytes.find("WholeExtent=\"0 4 0 6 0 2\""), std::string::npos) << bytes;
+  EXPECT_NE(bytes.find("<Piece Extent=\"1 3 2 6 0 1\">"), std::string::npos) << bytes;
+  EXPECT_EQ(bytes.substr(0, bytes.find("WholeExtent")),
+            slurp(whole).substr(0, slurp(whole).find("WholeExtent")));
+  const std::size_t us = bytes.find('_', bytes.find("<AppendedData"));
+  const auto v = decode<double>(bytes.data() + us + 9, sub.size());
+  for (std::size_t n = 0; n < v.size(); ++n) ASSERT_EQ(v[n], double(sub[n]));
+  // A piece outside its whole extent, or with the wrong count, is refused and leaves nothing.
+  std::remove(piece.c_str());
+  EXPECT_EQ(write_vti_piece(piece, f.spec, r, all, Span<const T>(f.values)).error().code,
+            ErrorCode::invalid_argument);
+  EXPECT_EQ(write_vti_piece(piece, f.spec, all, r, Span<const T>(f.values)).error().code,
+            ErrorCode::invalid_argument);
+  EXPECT_FALSE(test::file_exists(piece));
+
+  const std::string pvti = temp_path("all.pvti");
+  ASSERT_TRUE(write_pvti(pvti, f.spec, {{r, "a_0.vti"}, {all, "a&1.vti"}}, opt));
+  const std::string p = slurp(pvti);
+  EXPECT_NE(p.find("<VTKFile type=\"PImageData\""), std::string::npos) << p;
+  EXPECT_NE(p.find("<PImageData WholeExtent=\"0 4 0 6 0 2\" GhostLevel=\"0\" Origin=\""),
+            std::string::npos)
+      << p;
+  EXPECT_NE(p.find("<PDataArray type=\"Float64\" Name=\"sdf\""), std::string::npos) << p;
+  EXPECT_NE(p.find("<Piece Extent=\"1 3 2 6 0 1\" Source=\"a_0.vti\"/>"), std::string::npos) << p;
+  EXPECT_NE(p.find("Source=\"a&amp;1.vti\"/>"), std::string::npos) << p;
+  // Same origin and spacing text as the pieces.
+  const auto attr = [](const std::string& s, const char* name) {
+    const std::size_t a = s.find(name);
+    return s.substr(a, s.find('"', s.find('"', a) + 1) - a);
+  };
+  EXPECT_EQ(attr(p, "Origin="), attr(bytes, "Origin="));
+  EXPECT_EQ(attr(p, "Spacing="), attr(bytes, "Spacing="));
+  for (const std::string& s : {whole, piece, pvti}) std::remove(s.c_str());
+}
+
+TEST(WriteNpy, HeaderForAnyDescrIsPaddedTo64Bytes) {
+  const std::string h = npy_header("<u4", {7, 3});
+  EXPECT_EQ(h.size() % 64, 0u);
+  EXPECT_EQ(h.substr(0, 8), std::string("\x93NUMPY\x01\x00", 8));
+  EXPECT_NE(h.find("{'descr': '<u4', 'fortran_order': False, 'shape': (7, 3), }"),
+            std::string::npos)
+      << h;
+  EXPECT_NE(npy_header("<f8", {}).find("'shape': ()"), std::string::npos);
+  EXPECT_EQ(npy_descr(DType::float32), "<f4");
+}
