@@ -31,6 +31,10 @@
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
 
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#endif
+
 namespace ebgeom::bvh {
 
 /// Largest number of children a builder node may have (partitions return at most this many parts).
@@ -308,6 +312,290 @@ BuildTree<T> build_top_down(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centr
 }
 
 namespace detail {
+/// Four lanes of T with the few operations the SAH builder needs, each lane's result equal to the
+/// scalar one (`min(a, b)` is `b < a ? b : a`, as `std::min`, for non-NaN values). SSE2 on x86-64
+/// (the compilers do not vectorise these reliably on their own); plain arrays elsewhere.
+template <class T> struct Lanes4 {
+  T v[4];
+  static Lanes4 load(const T* p) noexcept { return {{p[0], p[1], p[2], p[3]}}; }
+  static Lanes4 splat(T x) noexcept { return {{x, x, x, x}}; }
+  void store(T* p) const noexcept {
+    for (int j = 0; j < 4; ++j) p[j] = v[j];
+  }
+  friend Lanes4 min(const Lanes4& a, const Lanes4& b) noexcept {
+    Lanes4 r;
+    for (int j = 0; j < 4; ++j) r.v[j] = b.v[j] < a.v[j] ? b.v[j] : a.v[j];
+    return r;
+  }
+  friend Lanes4 max(const Lanes4& a, const Lanes4& b) noexcept {
+    Lanes4 r;
+    for (int j = 0; j < 4; ++j) r.v[j] = a.v[j] < b.v[j] ? b.v[j] : a.v[j];
+    return r;
+  }
+  /// min(int((c - lo) * scale), top) per lane, for (c - lo) * scale >= 0.
+  static void bin(const T* c, const Lanes4& lo, const Lanes4& scale, T top, int* out) noexcept {
+    for (int j = 0; j < 4; ++j) out[j] = int(std::min((c[j] - lo.v[j]) * scale.v[j], top));
+  }
+};
+#if defined(__SSE2__) || defined(_M_X64)
+template <> struct Lanes4<float> {
+  __m128 v;
+  static Lanes4 load(const float* p) noexcept { return {_mm_loadu_ps(p)}; }
+  static Lanes4 splat(float x) noexcept { return {_mm_set1_ps(x)}; }
+  void store(float* p) const noexcept { _mm_storeu_ps(p, v); }
+  friend Lanes4 min(const Lanes4& a, const Lanes4& b) noexcept { return {_mm_min_ps(b.v, a.v)}; }
+  friend Lanes4 max(const Lanes4& a, const Lanes4& b) noexcept { return {_mm_max_ps(b.v, a.v)}; }
+  static void bin(const float* c, const Lanes4& lo, const Lanes4& scale, float top,
+                  int* out) noexcept {
+    const __m128 f = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(c), lo.v), scale.v);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
+                     _mm_cvttps_epi32(_mm_min_ps(f, _mm_set1_ps(top))));
+  }
+};
+template <> struct Lanes4<double> {
+  __m128d a, b;
+  static Lanes4 load(const double* p) noexcept { return {_mm_loadu_pd(p), _mm_loadu_pd(p + 2)}; }
+  static Lanes4 splat(double x) noexcept { return {_mm_set1_pd(x), _mm_set1_pd(x)}; }
+  void store(double* p) const noexcept { _mm_storeu_pd(p, a), _mm_storeu_pd(p + 2, b); }
+  friend Lanes4 min(const Lanes4& x, const Lanes4& y) noexcept {
+    return {_mm_min_pd(y.a, x.a), _mm_min_pd(y.b, x.b)};
+  }
+  friend Lanes4 max(const Lanes4& x, const Lanes4& y) noexcept {
+    return {_mm_max_pd(y.a, x.a), _mm_max_pd(y.b, x.b)};
+  }
+  static void bin(const double* c, const Lanes4& lo, const Lanes4& scale, double top,
+                  int* out) noexcept {
+    const __m128d t = _mm_set1_pd(top);
+    const __m128d f0 = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(c), lo.a), scale.a);
+    const __m128d f1 = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(c + 2), lo.b), scale.b);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
+                     _mm_unpacklo_epi64(_mm_cvttpd_epi32(_mm_min_pd(f0, t)),
+                                        _mm_cvttpd_epi32(_mm_min_pd(f1, t))));
+  }
+};
+#endif
+
+/// A primitive as the fast SAH builder moves it: box and centroid, each in 4 lanes (lane 3 is
+/// zero) so that a box update or a bin index is one 4-wide operation, and the input index.
+/// 52 B (float), 104 B (double).
+template <class T> struct SahPrim {
+  T lo[4];
+  T hi[4];
+  T c[4];
+  std::uint32_t index;
+};
+/// A bin (or any box) in 4 lanes.
+template <class T> struct SahBox {
+  Lanes4<T> lo, hi;
+  EBGEOM_FORCE_INLINE void reset() noexcept {
+    lo = Lanes4<T>::splat(std::numeric_limits<T>::infinity());
+    hi = Lanes4<T>::splat(-std::numeric_limits<T>::infinity());
+  }
+  EBGEOM_FORCE_INLINE void extend(const T* l, const T* h) noexcept {
+    lo = min(lo, Lanes4<T>::load(l));
+    hi = max(hi, Lanes4<T>::load(h));
+  }
+  EBGEOM_FORCE_INLINE void extend(const SahBox& b) noexcept {
+    lo = min(lo, b.lo);
+    hi = max(hi, b.hi);
+  }
+  Aabb<T> aabb() const noexcept {
+    T l[4], h[4];
+    lo.store(l);
+    hi.store(h);
+    return {{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
+  }
+};
+template <class T> Aabb<T> box_of(const SahPrim<T>* p, std::uint32_t n) noexcept {
+  SahBox<T> b;
+  b.reset();
+  for (std::uint32_t i = 0; i < n; ++i) b.extend(p[i].lo, p[i].hi);
+  return b.aabb();
+}
+template <class T> Aabb<T> centroid_box_of(const SahPrim<T>* p, std::uint32_t n) noexcept {
+  SahBox<T> b;
+  b.reset();
+  for (std::uint32_t i = 0; i < n; ++i) b.extend(p[i].c, p[i].c);
+  return b.aabb();
+}
+} // namespace detail
+
+/// The ready-made binned SAH build, fast: the same tree as
+/// `build_top_down(boxes, centroids, SahPartition{bins, block}, LeafSizeStop{max_leaf_size})`
+/// (the same nodes in the same order, with the same boxes, and every leaf holding the same
+/// primitives; only their order inside a leaf may differ), built about 3x faster. Each primitive's
+/// box, centroid and index are copied once into one array that the build partitions in place, so
+/// every pass reads memory in order (no gather through an index array); a node's box and centroid
+/// box come from its parent's bins and partition pass instead of a pass of their own; a box update
+/// is one 4-wide min and max. One allocation for the whole build besides the tree. O(n log n).
+template <class T>
+BuildTree<T> build_sah(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
+                       const SahPartition& sah, std::uint32_t max_leaf_size) {
+  EBGEOM_ASSERT(boxes.size() == centroids.size());
+  using detail::Lanes4;
+  using detail::SahBox;
+  using detail::SahPrim;
+  BuildTree<T> tree;
+  const std::uint32_t n = std::uint32_t(boxes.size());
+  if (n == 0) return tree;
+  const std::uint32_t block = sah.block;
+  constexpr int max_bins = 64;
+  const int nb = std::max(2, std::min(sah.bins, max_bins));
+
+  std::vector<SahPrim<T>> prims(n);
+  Aabb<T> root_box, root_cbox;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Aabb<T>& b = boxes[i];
+    const Vec3<T>& c = centroids[i];
+    prims[i] = {
+        {b.lo.x, b.lo.y, b.lo.z, T(0)}, {b.hi.x, b.hi.y, b.hi.z, T(0)}, {c.x, c.y, c.z, T(0)}, i};
+    root_box.extend(b);
+    root_cbox.extend(c);
+  }
+  tree.prim.resize(n);
+  tree.nodes.reserve(2 * std::size_t(n));
+  tree.nodes.emplace_back();
+  struct Task {
+    std::uint32_t node, begin, end;
+    int depth;
+    Aabb<T> box, cbox;
+  };
+  std::vector<Task> todo;
+  todo.reserve(2 * max_build_depth + 2);
+  todo.push_back({0, 0, n, 0, root_box, root_cbox});
+  SahBox<T> bins[3][max_bins];
+  std::uint32_t counts[3][max_bins];
+  while (!todo.empty()) {
+    const Task t = todo.back();
+    todo.pop_back();
+    tree.nodes[t.node].box = t.box;
+    tree.depth = std::max(tree.depth, t.depth + 1);
+    const std::uint32_t count = t.end - t.begin;
+    SahPrim<T>* p = prims.data() + t.begin;
+    if (count <= 1 || t.depth >= max_build_depth || count <= max_leaf_size) {
+      tree.nodes[t.node].first = t.begin;
+      tree.nodes[t.node].count = count;
+      tree.nodes[t.node].children = 0;
+      continue;
+    }
+    std::uint32_t mid = 0;
+    Aabb<T> lbox, rbox, lcbox, rcbox;
+    bool boxes_known = false;
+    auto by_axis = [](int axis) {
+      return [axis](const SahPrim<T>& a, const SahPrim<T>& b) {
+        return a.c[axis] < b.c[axis] || (a.c[axis] == b.c[axis] && a.index < b.index);
+      };
+    };
+    if (block > 1 && count <= 4 * block) {
+      // Small node: whole blocks, cut after a multiple of `block` along the longest axis.
+      std::sort(p, p + count, by_axis(t.cbox.longest_axis()));
+      const std::uint32_t k = std::max<std::uint32_t>(1, (count + block) / (2 * block));
+      mid = std::min(count - 1, k * block);
+    } else {
+      const Vec3<T> ext = t.cbox.extent();
+      const T lo[4] = {t.cbox.lo.x, t.cbox.lo.y, t.cbox.lo.z, T(0)};
+      T scale[4] = {T(0), T(0), T(0), T(0)};
+      for (int a = 0; a < 3; ++a) scale[a] = ext[a] > T(0) ? T(nb) / ext[a] : T(0);
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < nb; ++b) bins[a][b].reset(), counts[a][b] = 0;
+      // int(min(f, nb - 1)) == min(int(f), nb - 1) for f >= 0: SahPartition's bin, exactly.
+      const Lanes4<T> lo4 = Lanes4<T>::load(lo), scale4 = Lanes4<T>::load(scale);
+      const T top = T(nb - 1);
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const SahPrim<T>& q = p[i];
+        int b[4];
+        Lanes4<T>::bin(q.c, lo4, scale4, top, b);
+        for (int a = 0; a < 3; ++a) {
+          bins[a][b[a]].extend(q.lo, q.hi);
+          ++counts[a][b[a]];
+        }
+      }
+      // The sweep of SahPartition, operation for operation (same costs, same choice).
+      T best_cost = std::numeric_limits<T>::infinity();
+      int best_axis = -1, best_bin = 0;
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!(ext[axis] > T(0))) continue;
+        T right_cost[max_bins];
+        Aabb<T> acc;
+        std::uint32_t cnt = 0;
+        for (int b = nb - 1; b > 0; --b) {
+          acc.extend(bins[axis][b].aabb());
+          cnt += counts[axis][b];
+          right_cost[b] = cnt ? acc.half_area() * T((cnt + block - 1) / block) : T(0);
+        }
+        acc = Aabb<T>();
+        cnt = 0;
+        for (int b = 0; b < nb - 1; ++b) {
+          acc.extend(bins[axis][b].aabb());
+          cnt += counts[axis][b];
+          if (cnt == 0 || cnt == count) continue;
+          const T cost = acc.half_area() * T((cnt + block - 1) / block) + right_cost[b + 1];
+          if (cost < best_cost) {
+            best_cost = cost;
+            best_axis = axis;
+            best_bin = b;
+          }
+        }
+      }
+      if (best_axis < 0) {
+        // All centroids coincide (or no split separates them): median split, as SahPartition.
+        mid = count / 2;
+        std::nth_element(p, p + mid, p + count, by_axis(t.cbox.longest_axis()));
+      } else {
+        const int ax = best_axis;
+        const T lo_a = lo[ax], scale_a = scale[ax];
+        auto left = [&](const SahPrim<T>& q) {
+          return std::min(nb - 1, int((q.c[ax] - lo_a) * scale_a)) <= best_bin;
+        };
+        // Two-cursor partition; each primitive's centroid joins its side's box exactly once.
+        SahPrim<T>* first = p;
+        SahPrim<T>* last = p + count;
+        SahBox<T> lc, rc;
+        lc.reset();
+        rc.reset();
+        for (;;) {
+          for (; first != last && left(*first); ++first) lc.extend(first->c, first->c);
+          if (first == last) break;
+          --last;
+          for (; first != last && !left(*last); --last) rc.extend(last->c, last->c);
+          rc.extend(first->c, first->c);
+          if (first == last) break;
+          lc.extend(last->c, last->c);
+          std::swap(*first, *last);
+          ++first;
+        }
+        mid = std::uint32_t(first - p);
+        lcbox = lc.aabb();
+        rcbox = rc.aabb();
+        SahBox<T> l, r;
+        l.reset();
+        r.reset();
+        for (int b = 0; b <= best_bin; ++b) l.extend(bins[ax][b]);
+        for (int b = best_bin + 1; b < nb; ++b) r.extend(bins[ax][b]);
+        lbox = l.aabb();
+        rbox = r.aabb();
+        boxes_known = true;
+      }
+    }
+    if (!boxes_known) {
+      lbox = detail::box_of(p, mid);
+      rbox = detail::box_of(p + mid, count - mid);
+      lcbox = detail::centroid_box_of(p, mid);
+      rcbox = detail::centroid_box_of(p + mid, count - mid);
+    }
+    const std::uint32_t first_child = std::uint32_t(tree.nodes.size());
+    tree.nodes[t.node].first = first_child;
+    tree.nodes[t.node].count = 0;
+    tree.nodes[t.node].children = 2;
+    tree.nodes.resize(tree.nodes.size() + 2);
+    todo.push_back({first_child + 1, t.begin + mid, t.end, t.depth + 1, rbox, rcbox});
+    todo.push_back({first_child, t.begin, t.begin + mid, t.depth + 1, lbox, lcbox});
+  }
+  for (std::uint32_t i = 0; i < n; ++i) tree.prim[i] = prims[i].index;
+  return tree;
+}
+
+namespace detail {
 /// Spreads the low 21 bits of `v` to every third bit.
 inline std::uint64_t spread_bits_21(std::uint64_t v) noexcept {
   v &= 0x1fffff;
@@ -409,8 +697,7 @@ BuildTree<T> build(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
     return build_morton<T>(boxes, centroids, leaf);
   case BuildMethod::sah_binned:
   default:
-    return build_top_down<T>(boxes, centroids, SahPartition{options.bins, options.block},
-                             LeafSizeStop{leaf});
+    return build_sah<T>(boxes, centroids, SahPartition{options.bins, options.block}, leaf);
   }
 }
 

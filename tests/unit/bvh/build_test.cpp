@@ -123,6 +123,59 @@ TYPED_TEST(BuildTest, EveryBuilderMakesAValidTree) {
   }
 }
 
+TYPED_TEST(BuildTest, FastSahBuildEqualsTheGenericSahBuild) {
+  using T = TypeParam;
+  // build_sah must make build_top_down(SahPartition, LeafSizeStop)'s tree: same nodes in the same
+  // order, same boxes, same primitives in every leaf (their order inside a leaf may differ).
+  auto expect_same = [](const BuildTree<T>& a, const BuildTree<T>& b) {
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    EXPECT_EQ(a.depth, b.depth);
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+      const auto &x = a.nodes[i], &y = b.nodes[i];
+      ASSERT_EQ(x.first, y.first) << "node " << i;
+      ASSERT_EQ(x.count, y.count) << "node " << i;
+      ASSERT_EQ(x.children, y.children) << "node " << i;
+      EXPECT_EQ(x.box, y.box) << "node " << i;
+      if (!x.is_leaf()) continue;
+      std::vector<std::uint32_t> p(a.prim.begin() + x.first, a.prim.begin() + x.first + x.count);
+      std::vector<std::uint32_t> q(b.prim.begin() + y.first, b.prim.begin() + y.first + y.count);
+      std::sort(p.begin(), p.end());
+      std::sort(q.begin(), q.end());
+      ASSERT_EQ(p, q) << "leaf " << i;
+    }
+  };
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> cell(0, 9);
+  for (int input = 0; input < 3; ++input) {
+    std::vector<Aabb<T>> boxes = random_boxes<T>(input == 0 ? 3000 : 2000, 5 + input);
+    std::vector<Vec3<T>> cent = centers(boxes);
+    if (input == 1) // centroids that are not the box centres (the builder must use the given ones)
+      for (std::size_t i = 0; i < cent.size(); i += 3) cent[i] = boxes[i].lo;
+    if (input == 2) // many coincident centroids on a coarse lattice, and a run of identical boxes
+      for (std::size_t i = 0; i < cent.size(); ++i) {
+        const Vec3<T> c{T(cell(rng)), T(cell(rng) / 5), T(0)};
+        boxes[i] =
+            i < 500 ? Aabb<T>::of({0, 0, 0}, {1, 1, 1}) : Aabb<T>::of(c, c + Vec3<T>{1, 1, 1});
+        cent[i] = boxes[i].center();
+      }
+    const Span<const Aabb<T>> B(boxes);
+    const Span<const Vec3<T>> C(cent);
+    struct Case {
+      int bins;
+      std::uint32_t block, leaf;
+    };
+    for (const Case c : {Case{16, 1, 1}, Case{16, 1, 4}, Case{16, 8, 8}, Case{4, 4, 4},
+                         Case{32, 8, 4}, Case{2, 1, 2}, Case{64, 4, 16}}) {
+      const SahPartition sah{c.bins, c.block};
+      const auto fast = build_sah<T>(B, C, sah, c.leaf);
+      SCOPED_TRACE(testing::Message() << "input " << input << " bins " << c.bins << " block "
+                                      << c.block << " leaf " << c.leaf);
+      expect_same(fast, build_top_down<T>(B, C, sah, LeafSizeStop{c.leaf}));
+      check_tree(fast, boxes, c.leaf, true);
+    }
+  }
+}
+
 TYPED_TEST(BuildTest, ChunkPartitionMakesKEqualChunksAlongTheLongestAxis) {
   using T = TypeParam;
   std::vector<Aabb<T>> boxes;
