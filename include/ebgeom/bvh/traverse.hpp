@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "ebgeom/bvh/simd_nodes.hpp"
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
@@ -94,43 +95,54 @@ void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& 
       leaf(bvh.root.index, bvh.root.count, best2);
     return;
   }
+  // The nearest surviving child is expanded at once (no push/pop round trip); the others wait
+  // on the stack, nearest on top, and are re-checked against the bound when popped.
   FixedStack<Pending<T>, WideBvh<T, K, BV>::stack_capacity> todo;
-  todo.push({bvh.root, T(0)});
-  while (!todo.empty()) {
-    const Pending<T> top = todo.pop();
-    if (!(top.dist2 < prune_limit(best2, abs_slack)))
-      continue; // a closer hit arrived after the push
-    if (top.ref.is_leaf()) {
-      leaf(top.ref.index, top.ref.count, best2);
-      continue;
-    }
-    const auto& n = bvh.nodes[top.ref.index];
-    T d2[K];
-    child_dist2(n, p, d2);
-    if constexpr (Shrink) {
-      T far2[K];
-      child_far_dist2(n, p, far2);
-      T m = best2;
-      for (int k = 0; k < K; ++k) m = std::min(m, shrink_bound(far2[k]));
-      best2 = m;
-    }
-    // Children that can still hold a closer primitive, sorted far to near, then pushed so the
-    // nearest pops first.
-    Pending<T> c[K];
-    int m = 0;
-    const T lim = prune_limit(best2, abs_slack);
-    for (int k = 0; k < K; ++k) {
-      if (d2[k] < lim) {
-        Pending<T> e{n.child[k], d2[k]};
-        int j = m++;
-        while (j > 0 && c[j - 1].dist2 < e.dist2) {
-          c[j] = c[j - 1];
-          --j;
+  ChildRef cur = bvh.root;
+  for (;;) {
+    if (cur.is_leaf()) {
+      leaf(cur.index, cur.count, best2);
+    } else {
+      const auto& n = bvh.nodes[cur.index];
+      T d2[K];
+      child_dist2(n, p, d2);
+      if constexpr (Shrink) {
+        T far2[K];
+        child_far_dist2(n, p, far2);
+        T m = best2;
+        for (int k = 0; k < K; ++k) m = std::min(m, shrink_bound(far2[k]));
+        best2 = m;
+      }
+      // Children that can still hold a closer primitive, sorted far to near.
+      Pending<T> c[K];
+      int m = 0;
+      const T lim = prune_limit(best2, abs_slack);
+      for (int k = 0; k < K; ++k) {
+        if (d2[k] < lim) {
+          Pending<T> e{n.child[k], d2[k]};
+          int j = m++;
+          while (j > 0 && c[j - 1].dist2 < e.dist2) {
+            c[j] = c[j - 1];
+            --j;
+          }
+          c[j] = e;
         }
-        c[j] = e;
+      }
+      if (m > 0) {
+        for (int j = 0; j + 1 < m; ++j) todo.push(c[j]);
+        cur = c[m - 1].ref;
+        continue;
       }
     }
-    for (int j = 0; j < m; ++j) todo.push(c[j]);
+    // Next: the nearest waiting subtree that a closer hit has not ruled out since its push.
+    for (;;) {
+      if (todo.empty()) return;
+      const Pending<T> top = todo.pop();
+      if (top.dist2 < prune_limit(best2, abs_slack)) {
+        cur = top.ref;
+        break;
+      }
+    }
   }
 }
 

@@ -32,10 +32,18 @@
 /// exceptions are not observed. This changes no value (rounding, order and signed zeros are kept).
 /// The attribute forbids inlining into callers with other options, so such kernels are plain
 /// `inline` functions called once per block. Other compilers vectorise without it.
+///
+/// Both this and `EBGEOM_EXACT_KERNEL` (on the scalar twin of such a kernel) also turn off
+/// floating-point contraction: with FMA enabled (-march=haswell and later) GCC fuses a*b + c
+/// differently in a vectorised loop and in scalar code, and the block kernel would then differ
+/// from the scalar kernel (and the BVH from the brute force) in the last bit. Clang contracts
+/// only within one expression, the same way in both, so it needs neither.
 #if defined(__GNUC__) && !defined(__clang__)
-#define EBGEOM_VECTOR_KERNEL __attribute__((optimize("no-trapping-math")))
+#define EBGEOM_VECTOR_KERNEL __attribute__((optimize("no-trapping-math", "fp-contract=off")))
+#define EBGEOM_EXACT_KERNEL __attribute__((optimize("fp-contract=off")))
 #else
 #define EBGEOM_VECTOR_KERNEL
+#define EBGEOM_EXACT_KERNEL
 #endif
 
 /// Internal invariants only (never user data). On when EBGEOM_ENABLE_ASSERTS is defined, which our

@@ -74,7 +74,7 @@ EBGEOM_FORCE_INLINE T segment_parameter(const Vec3<T>& ap, const Vec3<T>& e) noe
 /// Degenerate triangles (zero area, repeated vertices) are handled: they reduce to segments or a
 /// point, never NaN for finite input. O(1), allocation-free, thread-safe.
 template <class T>
-EBGEOM_FORCE_INLINE TriangleClosestPoint<T>
+EBGEOM_EXACT_KERNEL inline TriangleClosestPoint<T>
 closest_point_triangle(const Vec3<T>& p, const Vec3<T>& a, const Vec3<T>& b,
                        const Vec3<T>& c) noexcept {
   const Vec3<T> ab = b - a, bc = c - b, ca = a - c;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "ebgeom/bvh/build.hpp"
+#include "ebgeom/bvh/simd_nodes.hpp"
 #include "ebgeom/bvh/traverse.hpp"
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/aabb.hpp"
@@ -307,7 +308,9 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
           for (std::uint32_t i = 0; i < nb; ++i) {
             T d2[W];
             block_distance2(blocks[first_block + i], p, d2);
-            for (int l = 0; l < W; ++l) {
+            // Most blocks hold nothing as close as the best: one vector compare skips them.
+            for (std::uint32_t m = bvh::lanes_at_most(d2, b2); m != 0; m &= m - 1) {
+              const int l = bvh::lowest_lane(m);
               const std::uint32_t slot = (first_block + i) * std::uint32_t(W) + std::uint32_t(l);
               // Exact ties go to the lowest triangle index, as in the brute force,
               // so even the reported triangle (and, on meshes where tied features
