@@ -176,6 +176,14 @@ template <class T, int K, class BV = Aabb<T>> struct WideBvh {
 
 namespace detail {
 template <class T, int K, class BV> struct Flattener {
+  /// Builder nodes that become the children of one wide node: at most max(K, 16) (a builder node
+  /// has at most 16 children; collapsing stops at K). A fixed array: no allocation per node.
+  struct Kids {
+    static constexpr int capacity = K > max_build_children ? K : max_build_children;
+    std::uint32_t v[capacity];
+    int n = 0;
+  };
+
   const BuildTree<T>& tree;
   const std::vector<BV>& bv; // per builder node
   WideBvh<T, K, BV>& out;
@@ -183,33 +191,34 @@ template <class T, int K, class BV> struct Flattener {
   ChildRef ref_of(std::uint32_t b, int level) {
     const BuildNode<T>& n = tree.nodes[b];
     if (n.is_leaf()) return ChildRef::leaf(n.first, n.count);
-    std::vector<std::uint32_t> kids;
-    for (std::uint32_t c = 0; c < n.children; ++c) kids.push_back(n.first + c);
+    Kids kids;
+    for (std::uint32_t c = 0; c < n.children; ++c) kids.v[kids.n++] = n.first + c;
     return emit(kids, level);
   }
 
   /// Emits one wide node for the builder nodes `kids` (collapsing inner children with the largest
   /// boxes while they fit, regrouping when there are more than K). Pre-order: the node's index is
   /// smaller than its descendants'.
-  ChildRef emit(std::vector<std::uint32_t> kids, int level) {
-    for (;;) {
-      if (kids.size() >= std::size_t(K)) break;
+  ChildRef emit(Kids kids, int level) {
+    while (kids.n < K) {
       int pick = -1;
       T best_area = -std::numeric_limits<T>::infinity();
-      for (std::size_t i = 0; i < kids.size(); ++i) {
-        const BuildNode<T>& c = tree.nodes[kids[i]];
-        if (c.is_leaf() || kids.size() - 1 + c.children > std::size_t(K)) continue;
+      for (int i = 0; i < kids.n; ++i) {
+        const BuildNode<T>& c = tree.nodes[kids.v[i]];
+        if (c.is_leaf() || std::size_t(kids.n) - 1 + c.children > std::size_t(K)) continue;
         const T a = c.box.half_area();
         if (a > best_area) {
           best_area = a;
-          pick = int(i);
+          pick = i;
         }
       }
       if (pick < 0) break;
-      const BuildNode<T>& c = tree.nodes[kids[std::size_t(pick)]];
-      kids.erase(kids.begin() + pick);
-      for (std::uint32_t j = 0; j < c.children; ++j)
-        kids.insert(kids.begin() + pick + std::ptrdiff_t(j), c.first + j);
+      // Replace kids[pick] by its children, in place and in order.
+      const BuildNode<T>& c = tree.nodes[kids.v[pick]];
+      const int m = int(c.children);
+      for (int i = kids.n - 1; i > pick; --i) kids.v[i + m - 1] = kids.v[i];
+      for (int j = 0; j < m; ++j) kids.v[pick + j] = c.first + std::uint32_t(j);
+      kids.n += m - 1;
     }
     const std::uint32_t index = std::uint32_t(out.nodes.size());
     out.nodes.emplace_back();
@@ -218,27 +227,30 @@ template <class T, int K, class BV> struct Flattener {
       out.nodes[index].set_child_bv(k, BV());
       out.nodes[index].child[k] = ChildRef{};
     }
-    if (kids.size() <= std::size_t(K)) {
-      for (std::size_t k = 0; k < kids.size(); ++k) {
-        const ChildRef r = ref_of(kids[k], level + 1);
+    if (kids.n <= K) {
+      for (int k = 0; k < kids.n; ++k) {
+        const ChildRef r = ref_of(kids.v[k], level + 1);
         auto& w = out.nodes[index]; // `out.nodes` may have grown
         w.child[k] = r;
-        w.set_child_bv(int(k), bv[kids[k]]);
+        w.set_child_bv(k, bv[kids.v[k]]);
       }
       return ChildRef::inner(index);
     }
     // More than K children (a K-ary partition with more parts than K): K groups of consecutive
     // children, each its own node.
     for (int g = 0; g < K; ++g) {
-      const std::size_t a = kids.size() * std::size_t(g) / K, b = kids.size() * (g + 1) / K;
+      const int a = kids.n * g / K, b = kids.n * (g + 1) / K;
       if (a == b) continue;
       BV group;
-      for (std::size_t i = a; i < b; ++i) group = merge(group, bv[kids[i]]);
-      const ChildRef r = b - a == 1
-                             ? ref_of(kids[a], level + 1)
-                             : emit(std::vector<std::uint32_t>(kids.begin() + std::ptrdiff_t(a),
-                                                               kids.begin() + std::ptrdiff_t(b)),
-                                    level + 1);
+      for (int i = a; i < b; ++i) group = merge(group, bv[kids.v[i]]);
+      ChildRef r;
+      if (b - a == 1) {
+        r = ref_of(kids.v[a], level + 1);
+      } else {
+        Kids sub;
+        for (int i = a; i < b; ++i) sub.v[sub.n++] = kids.v[i];
+        r = emit(sub, level + 1);
+      }
       auto& w = out.nodes[index];
       w.child[g] = r;
       w.set_child_bv(g, group);

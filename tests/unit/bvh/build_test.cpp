@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <set>
 #include <vector>
@@ -146,7 +147,7 @@ TYPED_TEST(BuildTest, FastSahBuildEqualsTheGenericSahBuild) {
   };
   std::mt19937_64 rng(11);
   std::uniform_int_distribution<int> cell(0, 9);
-  for (int input = 0; input < 3; ++input) {
+  for (int input = 0; input < 4; ++input) {
     std::vector<Aabb<T>> boxes = random_boxes<T>(input == 0 ? 3000 : 2000, 5 + input);
     std::vector<Vec3<T>> cent = centers(boxes);
     if (input == 1) // centroids that are not the box centres (the builder must use the given ones)
@@ -158,18 +159,26 @@ TYPED_TEST(BuildTest, FastSahBuildEqualsTheGenericSahBuild) {
             i < 500 ? Aabb<T>::of({0, 0, 0}, {1, 1, 1}) : Aabb<T>::of(c, c + Vec3<T>{1, 1, 1});
         cent[i] = boxes[i].center();
       }
+    if (input == 3) // subnormal extents: bins per unit length would overflow
+      for (std::size_t i = 0; i < cent.size(); ++i) {
+        const T tiny = std::numeric_limits<T>::denorm_min();
+        boxes[i] = Aabb<T>::of(Vec3<T>{T(i % 3), T(i % 5), T(i % 7)} * tiny);
+        cent[i] = boxes[i].center();
+      }
     const Span<const Aabb<T>> B(boxes);
     const Span<const Vec3<T>> C(cent);
     struct Case {
       int bins;
-      std::uint32_t block, leaf;
+      std::uint32_t block, leaf, above;
     };
-    for (const Case c : {Case{16, 1, 1}, Case{16, 1, 4}, Case{16, 8, 8}, Case{4, 4, 4},
-                         Case{32, 8, 4}, Case{2, 1, 2}, Case{64, 4, 16}}) {
-      const SahPartition sah{c.bins, c.block};
+    for (const Case c :
+         {Case{16, 1, 1, 1024}, Case{16, 1, 4, 0}, Case{16, 8, 8, 1024}, Case{16, 8, 8, ~0u},
+          Case{4, 4, 4, 64}, Case{32, 8, 4, 100}, Case{2, 1, 2, 1024}, Case{64, 4, 16, 0}}) {
+      const SahPartition sah{c.bins, c.block, c.above};
       const auto fast = build_sah<T>(B, C, sah, c.leaf);
-      SCOPED_TRACE(testing::Message() << "input " << input << " bins " << c.bins << " block "
-                                      << c.block << " leaf " << c.leaf);
+      SCOPED_TRACE(testing::Message()
+                   << "input " << input << " bins " << c.bins << " block " << c.block << " leaf "
+                   << c.leaf << " longest axis above " << c.above);
       expect_same(fast, build_top_down<T>(B, C, sah, LeafSizeStop{c.leaf}));
       check_tree(fast, boxes, c.leaf, true);
     }
