@@ -15,3 +15,17 @@ if(TARGET ebgeom_bench_grid_bench)
     message(STATUS "grid_bench: OpenVDB not found, peer skipped (sh bench/install-openvdb.sh)")
   endif()
 endif()
+
+# Embree 3 peer of the dense grid (per-point closest-triangle queries, bench/peers/embree_peer.hpp),
+# as in mesh_sdf_bench (bench/install-peers.sh installs libembree-dev).
+if(TARGET ebgeom_bench_grid_bench)
+  target_include_directories(ebgeom_bench_grid_bench PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  find_package(embree 3 QUIET)
+  if(embree_FOUND)
+    target_link_libraries(ebgeom_bench_grid_bench PRIVATE embree)
+    target_compile_definitions(ebgeom_bench_grid_bench PRIVATE EBGEOM_BENCH_HAVE_EMBREE)
+    message(STATUS "grid_bench: Embree ${embree_VERSION} peer enabled")
+  else()
+    message(STATUS "grid_bench: Embree 3 not found, peer skipped (sh bench/install-peers.sh)")
+  endif()
+endif()

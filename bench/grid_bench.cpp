@@ -1,10 +1,13 @@
-// Grid sampling benchmark (issue 5): dense exact grids (coherent vs independent searches), the
+// Grid sampling benchmark (issue 5): dense exact grids (tile evaluation, the default, against
+// independent per-point searches, optionally coherent ones, and Embree 3's per-point closest query
+// on the same samples when built with EBGEOM_BENCH_HAVE_EMBREE), the
 // octree narrow band (dense and sparse output) against ebgeom's dense grid and OpenVDB's
 // meshToVolume (when built with EBGEOM_BENCH_HAVE_OPENVDB), thread scaling, and the memory of a
 // sparse narrow band. Every figure is the median of --reps runs (wall clock, steady_clock).
 //
 // Usage: ebgeom_bench_grid_bench [--mesh PATH] [--reps N] [--dense N] [--band N] [--sparse N]
 //                                [--cells C] [--threads T] [--only dense|band|sparse]
+//                                [--coherent] [--no-embree] [--check N]
 // Defaults: ../shared/meshes/ogre.obj, 5 reps, dense 256^3, band 512^3, sparse 1024^3, 3 cells,
 // 2 threads. Box: the mesh's bounding box grown by 10% of its extent per side. float throughout.
 #include <algorithm>
@@ -14,6 +17,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -22,6 +26,9 @@
 #include "ebgeom/io/read_mesh.hpp"
 #include "ebgeom/sdf/mesh_sdf.hpp"
 
+#if defined(EBGEOM_BENCH_HAVE_EMBREE)
+#include "peers/embree_peer.hpp"
+#endif
 #if defined(EBGEOM_BENCH_HAVE_OPENVDB)
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -40,6 +47,8 @@ struct Options {
   double cells = 3;
   int threads = 2;
   std::string only;
+  bool coherent = false, embree = true;
+  std::size_t check = 200000; ///< samples (evenly strided) checked against Embree
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -108,6 +117,12 @@ int main(int argc, char** argv) {
       o.threads = std::atoi(next());
     else if (a == "--only")
       o.only = next();
+    else if (a == "--coherent")
+      o.coherent = true;
+    else if (a == "--no-embree")
+      o.embree = false;
+    else if (a == "--check")
+      o.check = std::size_t(std::atol(next()));
     else {
       std::fprintf(stderr, "unknown option %s (see the file comment)\n", a.c_str());
       return 2;
@@ -131,26 +146,74 @@ int main(int argc, char** argv) {
   if (want("dense")) {
     const GridSpec<T> g = grid_over(sdf.bounds(), o.dense);
     std::vector<T> a(g.size()), b(g.size());
-    std::printf("dense grid %zux%zux%zu\n", g.nx(), g.ny(), g.nz());
+    std::printf("dense grid %zux%zux%zu = %zu samples\n", g.nx(), g.ny(), g.nz(), g.size());
     GridOptions opt;
     opt.exec.threads = 1;
+    opt.search = GridSearch::tile; // the default
+    const double tile = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(a), opt); });
+    print_row("dense exact, tile evaluation (default)", o.dense, 1, tile);
     opt.search = GridSearch::independent;
     const double ind = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(b), opt); });
     print_row("dense exact, independent per-point", o.dense, 1, ind);
-    opt.search = GridSearch::coherent;
-    const double coh = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(a), opt); });
-    print_row("dense exact, coherent (neighbour bound)", o.dense, 1, coh);
-    std::printf("  coherent speed-up %.2fx; %.1f ns/sample coherent, %.1f independent; %s\n",
-                ind / coh, 1e9 * coh / double(g.size()), 1e9 * ind / double(g.size()),
-                a == b ? "identical values" : "VALUES DIFFER");
+    const auto per = [&](double s) { return 1e9 * s / double(g.size()); };
+    std::printf("  tile vs independent %.2fx; %.1f ns/sample tile, %.1f independent; %s\n",
+                ind / tile, per(tile), per(ind), a == b ? "identical values" : "VALUES DIFFER");
+    double best = std::min(tile, ind);
+    if (o.coherent) {
+      opt.search = GridSearch::coherent;
+      const double coh = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(b), opt); });
+      print_row("dense exact, coherent (neighbour bound)", o.dense, 1, coh);
+      std::printf("  coherent vs independent %.2fx; %s\n", ind / coh,
+                  a == b ? "identical values" : "VALUES DIFFER");
+      best = std::min(best, coh);
+    }
+#if defined(EBGEOM_BENCH_HAVE_EMBREE)
+    if (o.embree) {
+      // Embree 3 per grid point: the same samples (GridSpec::point), one thread, x fastest.
+      RTCDevice device = rtcNewDevice(nullptr);
+      {
+        const ebgeom_bench::EmbreePeer<T> peer(device, sdf.mesh());
+        std::vector<T> e(g.size());
+        const double emb = median_time(o.reps, [&] {
+          for (std::size_t k = 0; k < g.nz(); ++k)
+            for (std::size_t j = 0; j < g.ny(); ++j)
+              for (std::size_t i = 0; i < g.nx(); ++i) e[g.index(i, j, k)] = peer(g.point(i, j, k));
+        });
+        print_row("Embree 3 rtcPointQuery per grid point", o.dense, 1, emb);
+        // Agreement on evenly strided samples: |d| within 1e-5 relative + 16 ulps of the box.
+        const std::size_t stride =
+            std::max<std::size_t>(1, g.size() / std::max<std::size_t>(1, o.check));
+        const T scale =
+            std::max({std::abs(g.box.lo.x), std::abs(g.box.lo.y), std::abs(g.box.lo.z),
+                      std::abs(g.box.hi.x), std::abs(g.box.hi.y), std::abs(g.box.hi.z)});
+        std::size_t n = 0, off = 0, sign = 0;
+        for (std::size_t s = 0; s < g.size(); s += stride, ++n) {
+          const T tol =
+              T(1e-5) * std::abs(a[s]) + T(16) * std::numeric_limits<T>::epsilon() * scale;
+          off += !(std::abs(std::abs(e[s]) - std::abs(a[s])) <= tol);
+          sign += std::signbit(e[s]) != std::signbit(a[s]);
+        }
+        std::printf("  Embree agreement on %zu samples: %zu distances out of tolerance, %zu sign "
+                    "differences\n",
+                    n, off, sign);
+        std::printf("  ebgeom dense (tile) vs Embree per point: %.2fx; %.1f ns/sample Embree\n",
+                    emb / tile, per(emb));
+        std::printf("  ebgeom dense (independent) vs Embree per point: %.2fx\n", emb / ind);
+      }
+      rtcReleaseDevice(device);
+    }
+#else
+    std::printf("  Embree peer not built (sh bench/install-peers.sh, re-run CMake)\n");
+#endif
     opt.exec.threads = o.threads;
-    opt.search = GridSearch::independent; // the default
-    const double ind2 = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(a), opt); });
-    print_row("dense exact, independent (default)", o.dense, o.threads, ind2);
-    std::printf("  %d threads vs 1: %.2fx\n", o.threads, ind / ind2);
+    opt.search = GridSearch::tile; // the default
+    const double tile2 = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(b), opt); });
+    print_row("dense exact, tile evaluation (default)", o.dense, o.threads, tile2);
+    std::printf("  %d threads vs 1: %.2fx; %s\n", o.threads, tile / tile2,
+                a == b ? "identical values" : "VALUES DIFFER");
     const double n3 = double(o.band) / double(o.dense);
     std::printf("  extrapolated dense %zu^3 (x%.0f): %.1f s (1 thread)\n", o.band, n3 * n3 * n3,
-                std::min(ind, coh) * n3 * n3 * n3);
+                best * n3 * n3 * n3);
   }
 
   if (want("band")) {

@@ -10,11 +10,14 @@
 ///   sample is farther than the band, on the side of sign S(c). Surviving nodes split down to
 ///   single tiles. Nodes are aligned to the whole grid's tiles, so a sub-range makes the same
 ///   decisions as the full grid. Leaves come out in Morton order (octant order, depth first).
-/// - `detail::eval_tile`: the values of one tile. With a bounded query (`has_bounded_query_v`),
-///   each sample's search is bounded, in a band, by the band and, with `GridSearch::coherent`, by
-///   its neighbour's |S| plus their distance; samples the band search proves far get their sign
-///   from a neighbour inside the tile (a far sample's ball of radius > band >= spacing holds no
-///   surface, so its axis neighbours share its sign) or, failing that, from one full query.
+/// - `detail::eval_tile`: the values of one tile. Dense, with `GridSearch::tile` (the default),
+/// SDFs
+///   with a tile evaluation (`has_lattice_eval_v`) get one `eval_lattice` call. With a bounded
+///   query (`has_bounded_query_v`), each sample's search is bounded, in a band, by the band and,
+///   with `GridSearch::coherent`, by its neighbour's |S| plus their distance; samples the band
+///   search proves far get their sign from a neighbour inside the tile (a far sample's ball of
+///   radius > band >= spacing holds no surface, so its axis neighbours share its sign) or, failing
+///   that, from one full query.
 
 #include <algorithm>
 #include <array>
@@ -22,14 +25,37 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/eval/evaluate.hpp"
 #include "ebgeom/eval/grid_spec.hpp"
 #include "ebgeom/octree/octree.hpp"
 #include "ebgeom/sdf/concepts.hpp"
+
+namespace ebgeom {
+
+namespace detail {
+template <class S, class = void> struct has_lattice_eval : std::false_type {};
+template <class S>
+struct has_lattice_eval<S, std::void_t<decltype(std::declval<const S&>().eval_lattice(
+                               std::declval<Span<const Vec3<typename S::scalar_type>>>(),
+                               std::declval<const std::array<std::size_t, 3>&>(),
+                               std::declval<Span<typename S::scalar_type>>()))>> : std::true_type {
+};
+} // namespace detail
+
+/// True when `S` has a tile evaluation `void eval_lattice(Span<const Vec3<T>> pts, const
+/// std::array<std::size_t, 3>& dims, Span<T> out) const` writing, bit for bit, `out[l] =
+/// S(pts[l])` for a block of `dims` lattice samples (x fastest). `sample_grid` then makes one call
+/// per 8^3 tile with `GridSearch::tile` (the default) in dense mode (`MeshSdf`, `SignedMeshSdf`).
+template <class S> inline constexpr bool has_lattice_eval_v = detail::has_lattice_eval<S>::value;
+
+} // namespace ebgeom
 
 namespace ebgeom::detail {
 
@@ -84,6 +110,7 @@ template <class T> struct TileParams {
   T band = 0; ///< 0 = dense
   BandFill outside = BandFill::clamp;
   bool coherent = true;
+  bool tile = false;          ///< dense values through `eval_lattice` (see `GridSearch::tile`)
   bool can_propagate = false; ///< band >= the largest spacing: far samples share neighbours' signs
 };
 
@@ -126,6 +153,23 @@ void eval_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
                     sz = std::min(f.n[2], k0 + W) - k0;
   const T eps = lipschitz_slack<T>();
   const T tiny = std::numeric_limits<T>::min();
+
+  if constexpr (has_lattice_eval_v<S>) {
+    if (prm.band == 0 && prm.tile) {
+      Vec3<T> pts[W * W * W];
+      T tmp[W * W * W];
+      std::size_t n = 0;
+      for (std::size_t z = 0; z < sz; ++z)
+        for (std::size_t y = 0; y < sy; ++y)
+          for (std::size_t x = 0; x < sx; ++x) pts[n++] = f.point(i0 + x, j0 + y, k0 + z);
+      sdf.eval_lattice(Span<const Vec3<T>>(pts, n), {{sx, sy, sz}}, Span<T>(tmp, n));
+      n = 0;
+      for (std::size_t z = 0; z < sz; ++z)
+        for (std::size_t y = 0; y < sy; ++y)
+          for (std::size_t x = 0; x < sx; ++x) vals[x + W * (y + W * z)] = tmp[n++];
+      return;
+    }
+  }
 
   if constexpr (has_bounded_query_v<S>) {
     if (prm.band > 0) {
@@ -380,6 +424,7 @@ TileParams<T> tile_params(const GridSpec<T>& spec, const GridOptions& opt) noexc
   prm.band = T(opt.band);
   prm.outside = opt.outside;
   prm.coherent = opt.search == GridSearch::coherent;
+  prm.tile = opt.search == GridSearch::tile;
   const Vec3<T> h = spec.spacing();
   T hmax = 0;
   for (int a = 0; a < 3; ++a)

@@ -136,13 +136,17 @@ enum class BandFill : std::uint8_t {
 
 /// How the exact values of a grid are searched for (never changes them).
 enum class GridSearch : std::uint8_t {
+  /// The default. SDFs with a tile evaluation (`has_lattice_eval_v`: `MeshSdf`, `SignedMeshSdf`)
+  /// get one call per 8^3 tile, which shares one candidate list of BVH leaves between the tile's
+  /// samples (`MeshSdf::eval_lattice`); others are evaluated per sample, as `independent`.
+  tile,
   /// Every sample is searched for on its own; in a narrow band, SDFs with a bounded query
-  /// (`has_bounded_query_v`) search only within the band. The default: on the ogre mesh the
-  /// coherent seed below gave no gain (0.97x at 256^3, docs/performance.md), because `MeshSdf`'s
-  /// search already shrinks its bound to the nearest box's farthest distance at the first nodes.
+  /// (`has_bounded_query_v`) search only within the band.
   independent,
   /// SDFs with a bounded query also seed each sample's search with its neighbour's value: S is
-  /// 1-Lipschitz, so |S(p)| <= |S(q)| + |p - q| (inflated by 64 ulps). Same values.
+  /// 1-Lipschitz, so |S(p)| <= |S(q)| + |p - q| (inflated by 64 ulps). Same values. On the ogre
+  /// mesh it gave no gain (0.97x at 256^3, docs/performance.md): `MeshSdf`'s search already
+  /// shrinks its bound to the nearest box's farthest distance at the first nodes.
   coherent
 };
 
@@ -159,7 +163,7 @@ struct GridOptions {
   /// Values outside the band (ignored when `band == 0`).
   BandFill outside = BandFill::clamp;
   /// Search strategy for exact values (never changes them).
-  GridSearch search = GridSearch::independent;
+  GridSearch search = GridSearch::tile;
   /// Called after each tile with (tiles done, tile count), possibly from several threads at once:
   /// it must be thread-safe and cheap. Empty = no reporting.
   std::function<void(std::size_t, std::size_t)> progress;

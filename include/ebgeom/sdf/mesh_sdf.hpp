@@ -11,6 +11,7 @@
 /// `-ffp-contract=off` where bitwise equality with the brute force matters more than speed.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -19,12 +20,12 @@
 #include <vector>
 
 #include "ebgeom/bvh/build.hpp"
-#include "ebgeom/bvh/simd_nodes.hpp"
 #include "ebgeom/bvh/traverse.hpp"
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/core/result.hpp"
+#include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/geom/closest_point_triangle.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
@@ -33,7 +34,6 @@
 #include "ebgeom/sdf/concepts.hpp"
 
 namespace ebgeom {
-
 /// W triangles, structure of arrays: 9·W scalars (W = 8 float: 288 B; W = 4 double: 288 B).
 template <class T, int W> struct TriBlock {
   T ax[W], ay[W], az[W], bx[W], by[W], bz[W], cx[W], cy[W], cz[W];
@@ -123,6 +123,87 @@ EBGEOM_VECTOR_KERNEL inline void block_distance2(const TriBlock<T, W>& t, const 
   for (int l = 0; l < W; ++l) out[l] = res[l];
 }
 
+/// Supporting planes of a block's triangles seen from `p`: for each lane, the unit normal `n` of
+/// the plane through the triangle's closest point `c` to `p`, perpendicular to `p - c`, and `off
+/// = n · c`. The triangle (convex) lies in the half-space n · x <= off, so `n · x - off` is a lower
+/// bound on the distance from any point x to it (distance to a convex set is convex). Lanes with
+/// `p` on the triangle get n = 0 and off = -inf... no bound (`n · x - off = -inf`). Approximate
+/// (callers add margins); same case analysis as `block_distance2`.
+template <class T, int W>
+EBGEOM_VECTOR_KERNEL inline void block_planes(const TriBlock<T, W>& t, const Vec3<T>& p,
+                                              T (&onx)[W], T (&ony)[W], T (&onz)[W],
+                                              T (&ooff)[W]) noexcept {
+  T rx[W], ry[W], rz[W], ro[W];
+  for (int l = 0; l < W; ++l) {
+    const T ax = t.ax[l], ay = t.ay[l], az = t.az[l];
+    const T bx = t.bx[l], by = t.by[l], bz = t.bz[l];
+    const T cx = t.cx[l], cy = t.cy[l], cz = t.cz[l];
+    const T abx = bx - ax, aby = by - ay, abz = bz - az;
+    const T bcx = cx - bx, bcy = cy - by, bcz = cz - bz;
+    const T cax = ax - cx, cay = ay - cy, caz = az - cz;
+    const T apx = p.x - ax, apy = p.y - ay, apz = p.z - az;
+    const T bpx = p.x - bx, bpy = p.y - by, bpz = p.z - bz;
+    const T cpx = p.x - cx, cpy = p.y - cy, cpz = p.z - cz;
+    const T acx = cx - ax, acy = cy - ay, acz = cz - az;
+    const T nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+    const T nn = nx * nx + ny * ny + nz * nz;
+    auto edge = [&](T sx, T sy, T sz, T ex, T ey, T ez, T px, T py, T pz, T& qx, T& qy, T& qz) {
+      const T ee = ex * ex + ey * ey + ez * ez;
+      const T num = px * ex + py * ey + pz * ez;
+      const T r = num / (ee > T(0) ? ee : T(1));
+      const T u = num <= T(0) ? T(0) : (num >= ee ? T(1) : r);
+      qx = sx + ex * u, qy = sy + ey * u, qz = sz + ez * u;
+      const T dx = p.x - qx, dy = p.y - qy, dz = p.z - qz;
+      return dx * dx + dy * dy + dz * dz;
+    };
+    T q0x, q0y, q0z, q1x, q1y, q1z, q2x, q2y, q2z;
+    const T d0 = edge(ax, ay, az, abx, aby, abz, apx, apy, apz, q0x, q0y, q0z);
+    const T d1 = edge(bx, by, bz, bcx, bcy, bcz, bpx, bpy, bpz, q1x, q1y, q1z);
+    const T d2 = edge(cx, cy, cz, cax, cay, caz, cpx, cpy, cpz, q2x, q2y, q2z);
+    T m = d0, qx = q0x, qy = q0y, qz = q0z;
+    const bool s1 = d1 < m;
+    m = s1 ? d1 : m, qx = s1 ? q1x : qx, qy = s1 ? q1y : qy, qz = s1 ? q1z : qz;
+    const bool s2 = d2 < m;
+    m = s2 ? d2 : m, qx = s2 ? q2x : qx, qy = s2 ? q2y : qy, qz = s2 ? q2z : qz;
+    const T w0 =
+        nx * (aby * apz - abz * apy) + ny * (abz * apx - abx * apz) + nz * (abx * apy - aby * apx);
+    const T w1 =
+        nx * (bcy * bpz - bcz * bpy) + ny * (bcz * bpx - bcx * bpz) + nz * (bcx * bpy - bcy * bpx);
+    const T w2 =
+        nx * (cay * cpz - caz * cpy) + ny * (caz * cpx - cax * cpz) + nz * (cax * cpy - cay * cpx);
+    const T h = nx * apx + ny * apy + nz * apz;
+    const T hn = h / (nn > T(0) ? nn : T(1));
+    const T fd2 = h * hn;
+    const bool inside = (nn > T(0)) & (w0 >= T(0)) & (w1 >= T(0)) & (w2 >= T(0)) & (fd2 <= m);
+    qx = inside ? p.x - nx * hn : qx, qy = inside ? p.y - ny * hn : qy;
+    qz = inside ? p.z - nz * hn : qz;
+    const T gx = p.x - qx, gy = p.y - qy, gz = p.z - qz;
+    const T g2 = gx * gx + gy * gy + gz * gz;
+    const T inv = g2 > T(0) ? T(1) / std::sqrt(g2) : T(0);
+    rx[l] = gx * inv, ry[l] = gy * inv, rz[l] = gz * inv;
+    ro[l] = g2 > T(0) ? rx[l] * qx + ry[l] * qy + rz[l] * qz : std::numeric_limits<T>::infinity();
+  }
+  for (int l = 0; l < W; ++l) onx[l] = rx[l], ony[l] = ry[l], onz[l] = rz[l], ooff[l] = ro[l];
+}
+
+/// Squared distances from `p` to `n` boxes stored as structure of arrays (`lo_x[i]`, ...).
+template <class T>
+EBGEOM_VECTOR_KERNEL inline void
+boxes_distance2(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,
+                const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx,
+                const T* EBGEOM_RESTRICT hy, const T* EBGEOM_RESTRICT hz, const Vec3<T>& p,
+                T* EBGEOM_RESTRICT out) noexcept {
+  const T px = p.x, py = p.y, pz = p.z;
+  // Ternaries, not std::max: the kernel's optimisation attribute keeps std::max from inlining.
+  for (std::size_t i = 0; i < n; ++i) {
+    T ax = lx[i] - px, bx = px - hx[i], ay = ly[i] - py, by = py - hy[i], az = lz[i] - pz,
+      bz = pz - hz[i];
+    ax = ax < bx ? bx : ax, ay = ay < by ? by : ay, az = az < bz ? bz : az;
+    ax = ax < T(0) ? T(0) : ax, ay = ay < T(0) ? T(0) : ay, az = az < T(0) ? T(0) : az;
+    out[i] = ax * ax + ay * ay + az * az;
+  }
+}
+
 /// Exact signed distance to a triangle mesh through a BVH (see the file comment).
 ///
 /// - `K`: BVH arity (2..16; 4 is the default, 8 suits AVX-512), `W`: triangles per leaf block.
@@ -167,6 +248,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
         bvh::build(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(centroids), options));
     s.pack_blocks();
     s.slack_ = rounding_slack(s.bvh_.box);
+    s.plane_margin_ = plane_margin(s.bvh_.box);
     return s;
   }
 
@@ -212,6 +294,36 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     std::uint32_t best = bvh::ChildRef::none;
     nearest_slot(p, best2, best);
     return std::sqrt(best2);
+  }
+
+  /// Exact signed distances at a block of lattice samples, bit for bit `(*this)(pts[l])` for
+  /// every `l` (`sample_grid` detects this method and calls it once per 8^3 tile).
+  ///
+  /// `pts` holds `dims[0] * dims[1] * dims[2]` points, x fastest (`pts[x + dims[0] * (y +
+  /// dims[1] * z)]`), with each coordinate monotone along its axis (a block of a regular grid);
+  /// `out` receives the values in the same order. Any points give exact values; the lattice order
+  /// only makes it fast.
+  ///
+  /// How: one BVH search at a sample near the block's centre, q, bounds every sample's distance
+  /// (1-Lipschitz: |S(p)| <= |S(q)| + |p - q| <= U), so every sample's nearest triangle lies in a
+  /// leaf within U of the block's bounding box; those leaves are collected once (nearest to the
+  /// centre first). A long list is split by octants, each filtering its parent's list with its own
+  /// bound. Each sample then scans its list (a vectorised box test, then the blocks of the boxes
+  /// still within the best distance), starting from the block of the previous sample's nearest
+  /// triangle, whose exact distance is a tight initial bound. Every triangle the per-point search
+  /// could pick lies in a scanned leaf and the same kernel and tie rule (lowest index) decide, so
+  /// the results are the per-point results. Allocates O(candidate leaves) scratch per call;
+  /// thread-safe.
+  void eval_lattice(Span<const Vec3<T>> pts, const std::array<std::size_t, 3>& dims,
+                    Span<T> out) const {
+    const std::size_t n = dims[0] * dims[1] * dims[2];
+    EBGEOM_ASSERT(pts.size() == n && out.size() == n);
+    if (n == 0) return;
+    LatticeJob job{pts.data(), dims, std::vector<std::uint32_t>(n, bvh::ChildRef::none),
+                   {},         {},   bvh::ChildRef::none};
+    job.d2.resize(64);
+    solve_lattice(job, {{0, 0, 0}}, dims, nullptr, 0);
+    for (std::size_t l = 0; l < n; ++l) out[l] = finish(pts[l], job.slot[l]).distance;
   }
 
   /// Moves the vertices: `moved` must have the same faces as the mesh was built from (same
@@ -299,29 +411,10 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
 
   /// Nearest triangle slot (block lane) by squared distance; `best2` is the initial bound.
   void nearest_slot(const Vec3<T>& p, T& best2, std::uint32_t& best) const noexcept {
-    const TriBlock<T, W>* blocks = blocks_.data();
-    const std::uint32_t* tri = block_tri_.data();
     bvh::nearest<true>(
         bvh_, p, best2,
         [&](std::uint32_t first_block, std::uint32_t count, T& b2) noexcept {
-          const std::uint32_t nb = (count + std::uint32_t(W) - 1) / std::uint32_t(W);
-          for (std::uint32_t i = 0; i < nb; ++i) {
-            T d2[W];
-            block_distance2(blocks[first_block + i], p, d2);
-            // Most blocks hold nothing as close as the best: one vector compare skips them.
-            for (std::uint32_t m = bvh::lanes_at_most(d2, b2); m != 0; m &= m - 1) {
-              const int l = bvh::lowest_lane(m);
-              const std::uint32_t slot = (first_block + i) * std::uint32_t(W) + std::uint32_t(l);
-              // Exact ties go to the lowest triangle index, as in the brute force,
-              // so even the reported triangle (and, on meshes where tied features
-              // disagree, the sign) is the same.
-              if (d2[l] < b2 ||
-                  (d2[l] == b2 && best != bvh::ChildRef::none && tri[slot] < tri[best])) {
-                b2 = d2[l];
-                best = slot;
-              }
-            }
-          }
+          scan_blocks(first_block, count, p, b2, best);
         },
         slack_);
   }
@@ -330,6 +423,265 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     T best2 = bound2;
     std::uint32_t best = bvh::ChildRef::none;
     nearest_slot(p, best2, best);
+    return finish(p, best);
+  }
+
+  /// Candidate leaves of a lattice block, structure of arrays (boxes padded with empty ones to a
+  /// multiple of 16 so the box-distance loop has no remainder).
+  struct LeafList {
+    // Boxes, then per leaf the supporting planes of its first block's triangles (`block_planes`,
+    // W lanes per leaf; `planes[i]` false: none yet).
+    std::vector<T> lo_x, lo_y, lo_z, hi_x, hi_y, hi_z, pnx, pny, pnz, poff;
+    std::vector<std::uint32_t> first, count, root;
+    std::vector<std::uint8_t> planes;
+    std::size_t size() const noexcept { return first.size(); }
+    void clear() noexcept {
+      for (auto* v : {&lo_x, &lo_y, &lo_z, &hi_x, &hi_y, &hi_z, &pnx, &pny, &pnz, &poff})
+        v->clear();
+      first.clear();
+      count.clear();
+      root.clear();
+      planes.clear();
+    }
+    void add(const Aabb<T>& b, std::uint32_t f, std::uint32_t c) {
+      lo_x.push_back(b.lo.x), lo_y.push_back(b.lo.y), lo_z.push_back(b.lo.z);
+      hi_x.push_back(b.hi.x), hi_y.push_back(b.hi.y), hi_z.push_back(b.hi.z);
+      root.push_back(std::uint32_t(first.size()));
+      first.push_back(f), count.push_back(c);
+      planes.push_back(0);
+      for (int l = 0; l < W; ++l)
+        pnx.push_back(0), pny.push_back(0), pnz.push_back(0), poff.push_back(0);
+    }
+    void add_from(const LeafList& o, std::size_t i) {
+      lo_x.push_back(o.lo_x[i]), lo_y.push_back(o.lo_y[i]), lo_z.push_back(o.lo_z[i]);
+      hi_x.push_back(o.hi_x[i]), hi_y.push_back(o.hi_y[i]), hi_z.push_back(o.hi_z[i]);
+      first.push_back(o.first[i]), count.push_back(o.count[i]), root.push_back(o.root[i]);
+    }
+    void pad() {
+      const T inf = std::numeric_limits<T>::infinity();
+      while (lo_x.size() % 16) {
+        lo_x.push_back(inf), lo_y.push_back(inf), lo_z.push_back(inf);
+        hi_x.push_back(-inf), hi_y.push_back(-inf), hi_z.push_back(-inf);
+      }
+    }
+  };
+
+  struct LatticeJob {
+    const Vec3<T>* pts;
+    std::array<std::size_t, 3> dims;
+    std::vector<std::uint32_t> slot; ///< nearest slot per sample (none = not searched yet)
+    LeafList lists[8];               ///< one per recursion level
+    std::vector<T> d2;               ///< box distances scratch
+    std::uint32_t last;              ///< nearest slot of the last sample searched
+  };
+
+  /// Squared distance between two boxes (0 when they overlap). For p in `b`, never above
+  /// `a.distance2(p)` in floating point (each step is monotone).
+  static T box_box_distance2(const Aabb<T>& a, const Aabb<T>& b) noexcept {
+    const T dx = std::max(std::max(a.lo.x - b.hi.x, b.lo.x - a.hi.x), T(0));
+    const T dy = std::max(std::max(a.lo.y - b.hi.y, b.lo.y - a.hi.y), T(0));
+    const T dz = std::max(std::max(a.lo.z - b.hi.z, b.lo.z - a.hi.z), T(0));
+    return dx * dx + dy * dy + dz * dz;
+  }
+
+  /// Leaves whose box is within squared distance `lim2` of `box`, nearest to `c` first.
+  void collect_leaves(const Aabb<T>& box, T lim2, const Vec3<T>& c, LeafList& out) const {
+    struct Item {
+      T key;
+      Aabb<T> b;
+      bvh::ChildRef r;
+    };
+    std::vector<Item> items;
+    if (bvh_.root.is_leaf()) {
+      items.push_back({T(0), bvh_.box, bvh_.root});
+    } else if (!bvh_.root.is_empty()) {
+      bvh::FixedStack<std::uint32_t, bvh::WideBvh<T, K>::stack_capacity> todo;
+      todo.push(bvh_.root.index);
+      while (!todo.empty()) {
+        const auto& nd = bvh_.nodes[todo.pop()];
+        for (int k = 0; k < K; ++k) {
+          const bvh::ChildRef r = nd.child[k];
+          if (r.is_empty()) continue;
+          const Aabb<T> b = nd.child_box(k);
+          if (!(box_box_distance2(b, box) < lim2)) continue;
+          if (r.is_leaf())
+            items.push_back({b.distance2(c), b, r});
+          else
+            todo.push(r.index);
+        }
+      }
+    }
+    std::sort(items.begin(), items.end(),
+              [](const Item& a, const Item& b) { return a.key < b.key; });
+    out.clear();
+    for (const Item& it : items) out.add(it.b, it.r.index, it.r.count);
+    out.pad();
+  }
+
+  /// Scans blocks [first, first + ceil(count / W)) at `p`, lowering `b2`/`best` (ties: lowest
+  /// triangle index, as the brute force).
+  EBGEOM_FORCE_INLINE T scan_blocks(std::uint32_t first_block, std::uint32_t count,
+                                    const Vec3<T>& p, T& b2, std::uint32_t& best) const noexcept {
+    const TriBlock<T, W>* blocks = blocks_.data();
+    const std::uint32_t* tri = block_tri_.data();
+    const std::uint32_t nb = (count + std::uint32_t(W) - 1) / std::uint32_t(W);
+    T mn = std::numeric_limits<T>::infinity();
+    for (std::uint32_t i = 0; i < nb; ++i) {
+      T d2[W];
+      block_distance2(blocks[first_block + i], p, d2);
+      T m = d2[0];
+      for (int l = 1; l < W; ++l) m = std::min(m, d2[l]);
+      mn = std::min(mn, m);
+      if (!(m <= b2)) continue; // no lane can win or tie
+      for (int l = 0; l < W; ++l) {
+        const std::uint32_t slot = (first_block + i) * std::uint32_t(W) + std::uint32_t(l);
+        if (d2[l] < b2 || (d2[l] == b2 && best != bvh::ChildRef::none && tri[slot] < tri[best])) {
+          b2 = d2[l];
+          best = slot;
+        }
+      }
+    }
+    return mn;
+  }
+
+  /// Nearest slot of `p` among the leaves of `list` (a superset of the leaves the per-point
+  /// search needs), starting from the block of slot `seed` (or none).
+  std::uint32_t scan_list(const LeafList& list, LeafList& pl, const Vec3<T>& p, std::uint32_t seed,
+                          std::vector<T>& d2s) const noexcept {
+    T b2 = std::numeric_limits<T>::infinity();
+    std::uint32_t best = bvh::ChildRef::none;
+    std::uint32_t seed_block = bvh::ChildRef::none;
+    if (seed != bvh::ChildRef::none) {
+      seed_block = seed / std::uint32_t(W);
+      scan_blocks(seed_block, std::uint32_t(W), p, b2, best);
+    }
+    const std::size_t n = list.size(), np = list.lo_x.size();
+    T* EBGEOM_RESTRICT d2 = d2s.data();
+    const T* EBGEOM_RESTRICT lx = list.lo_x.data();
+    const T* EBGEOM_RESTRICT ly = list.lo_y.data();
+    const T* EBGEOM_RESTRICT lz = list.lo_z.data();
+    const T* EBGEOM_RESTRICT hx = list.hi_x.data();
+    const T* EBGEOM_RESTRICT hy = list.hi_y.data();
+    const T* EBGEOM_RESTRICT hz = list.hi_z.data();
+    boxes_distance2(np, lx, ly, lz, hx, hy, hz, p, d2);
+    // Supporting planes bound each triangle's distance from below (`block_planes`). Rounding: the
+    // planes carry errors of a few ulps of the coordinates (`plane_margin_`) and the kernel's
+    // squared distances those `prune_limit` allows for; the margins exceed both.
+    const T rel = T(256) * std::numeric_limits<T>::epsilon();
+    T lim = bvh::prune_limit(b2, slack_);
+    T r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+    // Branch-free compaction of the boxes within the bound (few of them), then the scan.
+    std::uint32_t* EBGEOM_RESTRICT idx = reinterpret_cast<std::uint32_t*>(d2 + np);
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      idx[m] = std::uint32_t(i);
+      m += d2[i] < lim;
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t i = idx[k];
+      if (!(d2[i] < lim) || (list.first[i] == seed_block && list.count[i] <= std::uint32_t(W)))
+        continue;
+      const std::size_t j = list.root[i];
+      if (pl.planes[j]) {
+        const T* nx = pl.pnx.data() + j * W;
+        const T* ny = pl.pny.data() + j * W;
+        const T* nz = pl.pnz.data() + j * W;
+        const T* of = pl.poff.data() + j * W;
+        T lb = std::numeric_limits<T>::infinity();
+        for (int l = 0; l < W; ++l)
+          lb = std::min(lb, nx[l] * p.x + ny[l] * p.y + nz[l] * p.z - of[l]);
+        if (lb > r) continue;
+      }
+      scan_blocks(list.first[i], list.count[i], p, b2, best);
+      if (list.count[i] <= std::uint32_t(W) && !pl.planes[j]) {
+        T(&nx)[W] = *reinterpret_cast<T(*)[W]>(pl.pnx.data() + j * W);
+        T(&ny)[W] = *reinterpret_cast<T(*)[W]>(pl.pny.data() + j * W);
+        T(&nz)[W] = *reinterpret_cast<T(*)[W]>(pl.pnz.data() + j * W);
+        T(&of)[W] = *reinterpret_cast<T(*)[W]>(pl.poff.data() + j * W);
+        block_planes(blocks_[list.first[i]], p, nx, ny, nz, of);
+        pl.planes[j] = 1;
+      }
+      lim = bvh::prune_limit(b2, slack_);
+      r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+    }
+    return best;
+  }
+
+  /// Samples [a, b) of the job's lattice block; `parent` lists the candidate leaves of an
+  /// enclosing block (nullptr: the whole BVH).
+  void solve_lattice(LatticeJob& job, const std::array<std::size_t, 3>& a,
+                     const std::array<std::size_t, 3>& b, LeafList* parent, int level) const {
+    const auto& dims = job.dims;
+    auto index = [&](std::size_t x, std::size_t y, std::size_t z) {
+      return x + dims[0] * (y + dims[1] * z);
+    };
+    const Vec3<T> c0 = job.pts[index(a[0], a[1], a[2])];
+    const Vec3<T> c1 = job.pts[index(b[0] - 1, b[1] - 1, b[2] - 1)];
+    const Aabb<T> box(min(c0, c1), max(c0, c1));
+    const std::size_t nsamples = (b[0] - a[0]) * (b[1] - a[1]) * (b[2] - a[2]);
+    LeafList& list = job.lists[level];
+    // One search at the middle sample bounds every sample's distance.
+    const std::size_t qi = index((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2);
+    const Vec3<T> q = job.pts[qi];
+    if (job.slot[qi] == bvh::ChildRef::none) {
+      if (parent == nullptr) {
+        T b2 = std::numeric_limits<T>::infinity();
+        std::uint32_t best = bvh::ChildRef::none;
+        nearest_slot(q, b2, best);
+        job.slot[qi] = best;
+      } else {
+        job.slot[qi] = scan_list(*parent, job.lists[0], q, job.last, job.d2);
+      }
+      job.last = job.slot[qi];
+    }
+    {
+      T dq2 = std::numeric_limits<T>::infinity();
+      std::uint32_t dummy = bvh::ChildRef::none;
+      scan_blocks(job.slot[qi] / std::uint32_t(W), std::uint32_t(W), q, dq2, dummy);
+      const T eps = std::numeric_limits<T>::epsilon();
+      const T u = (std::sqrt(dq2) + std::sqrt(box.max_distance2(q))) * (T(1) + T(64) * eps);
+      const T lim2 = bvh::prune_limit(u * u, slack_);
+      if (parent == nullptr) {
+        collect_leaves(box, lim2, box.center(), list);
+      } else {
+        list.clear();
+        for (std::size_t i = 0; i < parent->size(); ++i) {
+          const Aabb<T> lb({parent->lo_x[i], parent->lo_y[i], parent->lo_z[i]},
+                           {parent->hi_x[i], parent->hi_y[i], parent->hi_z[i]});
+          if (box_box_distance2(lb, box) < lim2) list.add_from(*parent, i);
+        }
+        list.pad();
+      }
+    }
+    if (job.d2.size() < 2 * list.lo_x.size()) job.d2.resize(2 * list.lo_x.size());
+    if (list.size() > lattice_split_leaves && nsamples > 8 && level < 7) {
+      std::array<std::size_t, 3> m;
+      for (int d = 0; d < 3; ++d) m[d] = b[d] - a[d] > 1 ? (a[d] + b[d]) / 2 : b[d];
+      for (int o = 0; o < 8; ++o) {
+        std::array<std::size_t, 3> ca, cb;
+        bool empty = false;
+        for (int d = 0; d < 3; ++d) {
+          const bool hi = (o >> d) & 1;
+          ca[d] = hi ? m[d] : a[d];
+          cb[d] = hi ? b[d] : m[d];
+          empty = empty || ca[d] >= cb[d];
+        }
+        if (!empty) solve_lattice(job, ca, cb, &list, level + 1);
+      }
+      return;
+    }
+    for (std::size_t z = a[2]; z < b[2]; ++z)
+      for (std::size_t y = a[1]; y < b[1]; ++y)
+        for (std::size_t x = a[0]; x < b[0]; ++x) {
+          const std::size_t l = index(x, y, z);
+          if (job.slot[l] != bvh::ChildRef::none) continue;
+          job.slot[l] = scan_list(list, job.lists[0], job.pts[l], job.last, job.d2);
+          job.last = job.slot[l];
+        }
+  }
+
+  /// Signed distance etc. at `p` from its nearest slot (as `search`).
+  MeshClosestPoint<T> finish(const Vec3<T>& p, std::uint32_t best) const noexcept {
     MeshClosestPoint<T> r;
     if (best == bvh::ChildRef::none) return r;
     const std::uint32_t t = block_tri_[best];
@@ -344,6 +696,16 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     return r;
   }
 
+  static constexpr std::size_t lattice_split_leaves = 128;
+
+  /// Absolute error bound of a supporting plane's value (`block_planes`): 1024 ulps of the largest
+  /// coordinate or extent.
+  static T plane_margin(const Aabb<T>& box) noexcept {
+    const T s = std::max(
+        {max_component(abs(box.lo)), max_component(abs(box.hi)), max_component(box.extent())});
+    return T(1024) * std::numeric_limits<T>::epsilon() * s;
+  }
+
   /// Absolute pruning slack: a bound on the rounding of a triangle's squared distance near the
   /// surface (about eps · size²), so ties with the brute force are never pruned away.
   static T rounding_slack(const Aabb<T>& box) noexcept {
@@ -354,6 +716,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
 
   TriangleMesh<T> mesh_;
   T slack_ = 0;
+  T plane_margin_ = 0;
   bvh::WideBvh<T, K> bvh_;
   std::vector<TriBlock<T, W>> blocks_;
   std::vector<std::uint32_t> block_tri_; ///< triangle id of each block lane

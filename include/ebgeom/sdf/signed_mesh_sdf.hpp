@@ -15,11 +15,13 @@
 ///
 /// See docs/sign.md for the outcomes of each mode on imperfect meshes.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
 
 #include "ebgeom/core/result.hpp"
+#include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
@@ -183,6 +185,17 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
   }
 
   T unsigned_distance(const Vec3<T>& p) const noexcept { return sdf_.unsigned_distance(p); }
+
+  /// Values at a block of lattice samples, bit for bit `(*this)(pts[l])` (see
+  /// `MeshSdf::eval_lattice`, used as is in the pseudonormal mode; other modes evaluate per point).
+  void eval_lattice(Span<const Vec3<T>> pts, const std::array<std::size_t, 3>& dims,
+                    Span<T> out) const {
+    if (mode_ == SignMode::pseudonormal) {
+      sdf_.eval_lattice(pts, dims, out);
+      return;
+    }
+    for (std::size_t l = 0; l < pts.size(); ++l) out[l] = (*this)(pts[l]);
+  }
 
   /// Winding number at `p` by the resolved mode's method: exact for `winding`, fast otherwise
   /// (the fast structure exists only for the winding modes; pseudonormal and unsigned modes
