@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages ebgeom's tools and tests need, only when one is missing.
 # Usage: sh scripts/install-deps.sh [extra-package ...]   (as root, or with sudo available)
 set -e
-pkgs="cmake ninja-build g++ libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libpng-dev $*"
+pkgs="cmake ninja-build g++ libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev $*"
 missing=""
 for p in $pkgs; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

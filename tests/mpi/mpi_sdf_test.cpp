@@ -214,6 +214,12 @@ TEST_P(MpiErrors, UnreadableInputEndsEveryRankWithOneError) {
   const RunResult u = run_mpi(ranks, "sdf '" + scene_path() + "' -o '" + dir + "/x.vti'");
   EXPECT_EQ(u.code, 2) << u.err;
   EXPECT_EQ(error_lines(u.err), 1) << u.err;
+  // The sparse .npz is the serial tool's.
+  const RunResult z =
+      run_mpi(ranks, "sdf '" + scene_path() + "' -o '" + dir + "/x.npz' --band 2 --res 16");
+  EXPECT_EQ(z.code, 2) << z.err;
+  EXPECT_EQ(error_lines(z.err), 1) << z.err;
+  EXPECT_NE(z.err.find("written by the serial ebgeom sdf only"), std::string::npos) << z.err;
 }
 
 TEST_P(MpiErrors, UnwritableOutputEndsEveryRankWithOneError) {

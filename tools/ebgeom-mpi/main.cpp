@@ -48,6 +48,9 @@ OutputKind output_kind(const std::string& path) {
   if (ext == ".vti")
     fail(cli::exit_usage, path + ": ebgeom-mpi writes a parallel VTK file; name it .pvti (one "
                                  ".vti piece per rank is written beside it)");
+  if (ext == ".npz")
+    fail(cli::exit_usage, path + ": the sparse .npz output is written by the serial ebgeom sdf "
+                                 "only; ebgeom-mpi writes .pvti, .npy or .raw");
   fail(cli::exit_usage, path + ": unknown output format (expected .pvti, .npy or .raw)");
 }
 
@@ -308,6 +311,9 @@ int main(int argc, char** argv) {
   CLI::App* sub = app.add_subcommand(
       "sdf", "Sample the signed distance of a mesh or scene on a grid split over the ranks");
   cli::add_sdf_options(sub, o);
+  sub->get_option("--output")
+      ->description("output: OUT.pvti (one OUT_<rank>.vti piece per rank beside it), .npy or .raw "
+                    "(one file written with MPI-IO)");
   sub->footer("Output: OUT.pvti (+ OUT_<rank>.vti pieces), or one .npy / .raw file written with "
               "MPI-IO.\n--threads 0 (default) gives each rank its share of the node's cores.\n"
               "Examples:\n"

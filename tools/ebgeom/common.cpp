@@ -35,12 +35,11 @@ std::string human_bytes(std::uint64_t bytes) {
   return buf;
 }
 
-void require_memory(std::uint64_t bytes, const std::string& what) {
+void require_memory(std::uint64_t bytes, const std::string& what, const std::string& hint) {
   const std::uint64_t avail = available_memory_bytes();
   if (avail != 0 && bytes > avail)
     fail(exit_resource, what + " needs " + human_bytes(bytes) + " of memory but only " +
-                            human_bytes(avail) +
-                            " is available; lower the resolution (--res/--dx) or shrink --box");
+                            human_bytes(avail) + " is available; " + hint);
 }
 
 void require_input_file(const std::string& path) {

@@ -32,8 +32,10 @@ struct CliError : std::runtime_error {
 /// Bytes of memory the machine can still give (MemAvailable in /proc/meminfo); 0 if unknown.
 std::uint64_t available_memory_bytes();
 
-/// Throws `exit_resource` when `bytes` exceed the available memory, naming the size needed.
-void require_memory(std::uint64_t bytes, const std::string& what);
+/// Throws `exit_resource` when `bytes` exceed the available memory, naming the size needed and
+/// ending with `hint` (what the user can do instead).
+void require_memory(std::uint64_t bytes, const std::string& what,
+                    const std::string& hint = "lower the resolution (--res/--dx) or shrink --box");
 
 /// Throws CliError (input) unless `path` names an existing regular (or special) file that is not a
 /// directory: `FILE: no such file`, `FILE: is a directory`.

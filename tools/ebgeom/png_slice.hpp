@@ -1,7 +1,8 @@
 #pragma once
-// PNG slice of a dense grid: a diverging colour map (blue inside, red outside, white at zero),
-// faint distance bands, the zero level set in black, and a legend (colour bar with its scale, the
-// meaning of the colours and the slice position). Written with libpng.
+// PNG slice of a grid (dense, or any with a value per sample): a diverging colour map (blue inside,
+// red outside, white at zero), faint distance bands, the zero level set in black, and a legend
+// (colour bar with its scale, the meaning of the colours and the slice position). Written with
+// libpng.
 
 #include <cmath>
 #include <string>
@@ -40,9 +41,9 @@ struct PngInfo {
 /// Renders and writes `slice` to `path` (atomically). Throws CliError (output) on failure.
 PngInfo write_png_slice(const std::string& path, const SliceData& slice);
 
-/// Extracts the plane chosen by `where` from a grid (layout: x fastest).
-template <class T>
-SliceData extract_slice(const GridSpec<T>& spec, Span<const T> values, const SliceSpec& where) {
+/// Extracts the plane chosen by `where` from a grid whose sample (i, j, k) is `at(i, j, k)`.
+template <class T, class At>
+SliceData extract_slice_of(const GridSpec<T>& spec, const At& at, const SliceSpec& where) {
   SliceData s;
   const int a = where.axis;
   const int ua = a == 0 ? 1 : 0, va = a == 2 ? 1 : 2;
@@ -65,9 +66,18 @@ SliceData extract_slice(const GridSpec<T>& spec, Span<const T> values, const Sli
       ijk[a] = std::size_t(idx);
       ijk[ua] = u;
       ijk[va] = v;
-      s.values[v * s.width + u] = double(values[spec.index(ijk[0], ijk[1], ijk[2])]);
+      s.values[v * s.width + u] = double(at(ijk[0], ijk[1], ijk[2]));
     }
   return s;
+}
+
+/// Extracts the plane chosen by `where` from a dense grid (layout: x fastest).
+template <class T>
+SliceData extract_slice(const GridSpec<T>& spec, Span<const T> values, const SliceSpec& where) {
+  return extract_slice_of(
+      spec,
+      [&](std::size_t i, std::size_t j, std::size_t k) { return values[spec.index(i, j, k)]; },
+      where);
 }
 
 } // namespace ebgeom::cli

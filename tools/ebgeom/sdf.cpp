@@ -1,4 +1,5 @@
-// `ebgeom sdf INPUT -o OUT`: a dense SDF grid from a mesh file or a JSON scene.
+// `ebgeom sdf INPUT -o OUT`: an SDF grid from a mesh file or a JSON scene, dense (.vti, .npy,
+// .raw) or a sparse narrow band (.npz: only the 8^3 tiles the band keeps).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "grid_job.hpp"
+#include "npz.hpp"
 #include "scene.hpp"
 #include "sdf_job.hpp"
 
@@ -15,11 +17,26 @@ namespace ebgeom::cli {
 
 namespace {
 
+/// A grid of either kind, for the statistics, the PNG and the summary.
+template <class T> struct SampledGrid {
+  std::vector<T> dense;
+  SparseGrid<T> sparse;
+  std::uint64_t file_bytes = 0; // the .npz's size
+};
+
 template <class T> int run_sdf_as(const SdfOptions& o) {
   const bool scene = is_scene_path(o.input);
   const SignMode sign = parse_sign_mode(o.sign, exit_usage, "--sign");
+  const bool sparse = is_npz_path(o.output);
   auto fmt = grid_format_of(o.output);
-  if (!fmt) fail(exit_usage, fmt.error().what());
+  if (!fmt && !sparse)
+    fail(exit_usage, o.output +
+                         ": unknown output format; expected an extension .vti, .npy, .raw or "
+                         ".npz (sparse narrow band, with --band)");
+  if (sparse && !(o.band > 0))
+    fail(exit_usage, o.output +
+                         ": .npz is the sparse narrow-band output and needs --band W (W > 0); "
+                         "for a dense grid use .vti, .npy or .raw");
   SliceSpec slice;
   if (!o.png.empty()) slice = parse_slice(o.slice);
   require_input_file(o.input);
@@ -28,7 +45,8 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     auto same = [&](const std::string& out) {
       return std::filesystem::exists(out) && std::filesystem::equivalent(out, o.input, ec);
     };
-    if (same(o.output) || (*fmt == GridFormat::raw && same(raw_sidecar_path(o.output))) ||
+    if (same(o.output) ||
+        (!sparse && *fmt == GridFormat::raw && same(raw_sidecar_path(o.output))) ||
         (!o.png.empty() && same(o.png)))
       fail(exit_usage, o.output + ": writing it would overwrite the input " + o.input);
   }
@@ -41,23 +59,62 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
 
   const GridSpec<T> spec = make_spec(o, prog.bounds());
   const Vec3<T> h = spec.spacing();
-  require_memory(std::uint64_t(spec.size()) * sizeof(T),
-                 "a " + std::to_string(spec.nx()) + " x " + std::to_string(spec.ny()) + " x " +
-                     std::to_string(spec.nz()) + " grid of " +
-                     (sizeof(T) == 4 ? "float" : "double"));
+  const std::string grid_name = "a " + std::to_string(spec.nx()) + " x " +
+                                std::to_string(spec.ny()) + " x " + std::to_string(spec.nz()) +
+                                " grid of " + (sizeof(T) == 4 ? "float" : "double");
+  const std::uint64_t dense_bytes = std::uint64_t(spec.size()) * sizeof(T);
   GridOptions gopt;
   gopt.exec.threads = o.threads;
   gopt.band = o.band * double(max_component(h));
-  const auto values =
-      sample_with_progress(prog, spec, gopt, !o.quiet && !o.json && stderr_is_terminal());
+  const bool progress = !o.quiet && !o.json && stderr_is_terminal();
+  SampledGrid<T> grid;
+  if (sparse) {
+    // Before sampling only the tile table is known, unless the SDF is implicit (a winding sign):
+    // then no tile can be skipped and every one is kept. Kept tiles are otherwise checked as they
+    // are allocated (sample_sparse_with_progress).
+    std::uint64_t tiles = 1;
+    for (std::size_t d : spec.dims) tiles *= (d + grid_tile - 1) / grid_tile;
+    if (kind_of(prog) == SdfKind::implicit)
+      require_memory(
+          tiles * (sizeof(std::int32_t) + 12 + grid_tile * grid_tile * grid_tile * sizeof(T)),
+          "a band of " + grid_name + " of an implicit SDF (it keeps every tile)",
+          scene ? "only the sign of this scene is meaningful, so no tile far from the surface "
+                  "can be skipped; lower the resolution (--res/--dx) or shrink --box"
+                : "a winding sign (what --sign auto picks for a mesh with holes) cannot skip "
+                  "tiles far from the surface: use --sign pseudonormal (an oriented mesh with "
+                  "small holes) or --sign unsigned, or lower the resolution (--res/--dx)");
+    else
+      require_memory(tiles * sizeof(std::int32_t), "the tile table of " + grid_name);
+    grid.sparse = sample_sparse_with_progress(prog, spec, gopt, progress);
+  } else {
+    require_memory(dense_bytes, grid_name,
+                   "lower the resolution (--res/--dx), shrink --box, or write only a narrow band "
+                   "as a sparse grid: -o OUT.npz --band W");
+    grid.dense = sample_with_progress(prog, spec, gopt, progress);
+  }
   const double t3 = now_s();
-  const Span<const T> v(values);
-  write_grid_or_fail(o.output, spec, v, sizeof(T) == 4 ? DType::float32 : DType::float64);
   PngInfo img;
-  if (!o.png.empty()) img = write_png_slice(o.png, extract_slice(spec, v, slice));
+  if (sparse) {
+    const SparseGrid<T>& g = grid.sparse;
+    auto ok = write_sparse_npz(o.output, g);
+    if (!ok) fail(exit_output, ok.error().what());
+    grid.file_bytes = *ok;
+    if (!o.png.empty())
+      img = write_png_slice(
+          o.png,
+          extract_slice_of(
+              spec, [&](std::size_t i, std::size_t j, std::size_t k) { return g.value(i, j, k); },
+              slice));
+  } else {
+    const Span<const T> v(grid.dense);
+    write_grid_or_fail(o.output, spec, v, sizeof(T) == 4 ? DType::float32 : DType::float64);
+    if (!o.png.empty()) img = write_png_slice(o.png, extract_slice(spec, v, slice));
+  }
   const double t4 = now_s();
-  const GridStats st = grid_stats(v);
+  const GridStats st = sparse ? grid_stats(grid.sparse) : grid_stats(Span<const T>(grid.dense));
   const int threads = resolve_threads(gopt.exec);
+  const std::size_t tile_count = grid.sparse.tile_code.size();
+  const std::size_t kept = grid.sparse.block_count();
 
   if (o.json) {
     Json j;
@@ -85,6 +142,17 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
                         {"reason", prog.meshes[0]->sign_reason()}};
     j["threads"] = threads;
     if (!o.png.empty()) j["png"] = {{"path", o.png}, {"width", img.width}, {"height", img.height}};
+    if (sparse) {
+      const auto& g = grid.sparse;
+      j["format"] = "sparse";
+      j["tiles"] = {g.tiles[0], g.tiles[1], g.tiles[2]};
+      j["blocks"] = kept;
+      j["sparse_bytes"] = g.memory_bytes();
+      j["dense_bytes"] = dense_bytes;
+      j["output_bytes"] = grid.file_bytes;
+    } else {
+      j["format"] = "dense";
+    }
     std::printf("%s\n", j.dump(2).c_str());
   } else if (!o.quiet) {
     std::printf("ebgeom sdf: %s -> %s\n", o.input.c_str(), o.output.c_str());
@@ -94,6 +162,12 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
                 double(h.y), double(h.z));
     std::printf("  values    min %.6g  max %.6g  inside fraction %.4f\n", st.min, st.max,
                 st.inside_fraction);
+    if (sparse)
+      std::printf("  sparse    %zu of %zu tiles of 8^3 kept (%.2f%%): %s in memory, %s written "
+                  "(dense: %s)\n",
+                  kept, tile_count, tile_count ? 100.0 * double(kept) / double(tile_count) : 0.0,
+                  human_bytes(grid.sparse.memory_bytes()).c_str(),
+                  human_bytes(grid.file_bytes).c_str(), human_bytes(dense_bytes).c_str());
     if (!scene)
       std::printf("  sign      %s (%s)\n", sign_name(prog.meshes[0]->sign()),
                   prog.meshes[0]->sign_reason().c_str());
@@ -108,13 +182,15 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
 Subcommand add_sdf(CLI::App& app) {
   auto o = std::make_shared<SdfOptions>();
   CLI::App* sub = app.add_subcommand(
-      "sdf", "Sample the signed distance of a mesh file or a JSON scene on a dense grid");
+      "sdf", "Sample the signed distance of a mesh file or a JSON scene on a grid (dense, or a "
+             "sparse narrow band with .npz)");
   add_sdf_options(sub, o);
   sub->footer(
       "Examples:\n"
       "  ebgeom sdf bunny.obj -o bunny.vti --res 128\n"
       "  ebgeom sdf part.stl -o part.npy --dx 0.01 --precision double --json\n"
-      "  ebgeom sdf examples/scenes/csg.json -o csg.raw --res 96 --png csg.png --slice y=0.5");
+      "  ebgeom sdf examples/scenes/csg.json -o csg.raw --res 96 --png csg.png --slice y=0.5\n"
+      "  ebgeom sdf bunny.obj -o band.npz --res 2048 --band 3   (sparse: only the band's tiles)");
   return {sub, [o] {
             return o->precision == "double" ? run_sdf_as<double>(*o) : run_sdf_as<float>(*o);
           }};

@@ -39,8 +39,8 @@ inline void add_sdf_options(CLI::App* sub, const std::shared_ptr<SdfOptions>& o)
   sub->add_option("INPUT", o->input, "mesh file (STL, PLY, OBJ, VTK) or scene file (.json)")
       ->required();
   sub->add_option("-o,--output", o->output,
-                  "output grid: .vti (ParaView), .npy (NumPy, shape (NZ, NY, NX)) or .raw "
-                  "(with a .json sidecar)")
+                  "output grid: .vti (ParaView), .npy (NumPy, shape (NZ, NY, NX)), .raw "
+                  "(with a .json sidecar) or .npz (sparse narrow band of 8^3 tiles, needs --band)")
       ->required();
   auto* res = sub->add_option("--res", o->res,
                               "N cells on every axis, or NX NY NZ (default 64; cell-centred)")

@@ -1,0 +1,99 @@
+#pragma once
+// NumPy `.npz` archives (a ZIP of `.npy` members, stored uncompressed) and the sparse narrow-band
+// output of `ebgeom sdf` written as one: the layout is documented in docs/cli.md ("Sparse output").
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ebgeom/eval/sparse_grid.hpp"
+#include "ebgeom/eval/write_grid.hpp"
+
+namespace ebgeom::cli {
+
+/// One member of an `.npz`: stored as `name + ".npy"`, the bytes `header` (an `npy_header`) then
+/// `bytes` bytes at `data` (not owned; must outlive the write).
+struct NpzMember {
+  std::string name;
+  std::string header;
+  const void* data = nullptr;
+  std::uint64_t bytes = 0;
+};
+
+/// When `write_npz` uses ZIP64 records.
+enum class Zip64 : std::uint8_t {
+  as_needed, ///< only for a member, offset or directory at or past 4 GiB (or 65535 members)
+  always,    ///< on every member and the end record (for tests of readers)
+};
+
+struct NpzOptions {
+  Zip64 zip64 = Zip64::as_needed;
+};
+
+/// Writes `members` to `path` as a ZIP archive that `numpy.load` reads: stored (method 0)
+/// entries with zlib's CRC-32, ZIP64 records where a size or offset reaches 4 GiB, and a fixed
+/// timestamp (1980-01-01 00:00) so that equal arrays give equal files. Written to a temporary
+/// beside `path` and renamed on success. Returns the archive's size in bytes. Errors: `io`.
+Result<std::uint64_t> write_npz(const std::string& path, const std::vector<NpzMember>& members,
+                                const NpzOptions& opt = {});
+
+/// The `.npz` of a narrow-band grid (docs/cli.md, "Sparse output"):
+///  - `blocks` (M, 3) uint32: tile coordinates (tx, ty, tz) of kept tile b;
+///  - `values` (M, 8, 8, 8) of T: `values[b, z, y, x]` is sample (8 tx + x, 8 ty + y, 8 tz + z);
+///    local samples past the grid's last sample hold +band;
+///  - `tile_code` (TZ, TY, TX) int32: the block index (>= 0) of each tile, or -1 (skipped, every
+///    sample -band: inside) or -2 (skipped, +band: outside);
+///  - `dims` (3,) uint64 [NX, NY, NZ]; `tile` () int64 = 8; `origin`, `spacing` (3,) float64
+///    (x, y, z); `box` (2, 3) float64 (lo, hi); `band` () of T (the fill value of skipped tiles);
+///    `centering` () unicode `cell` or `node`.
+template <class T>
+Result<std::uint64_t> write_sparse_npz(const std::string& path, const SparseGrid<T>& g,
+                                       const NpzOptions& opt = {}) {
+  static_assert(sizeof(g.blocks[0]) == 3 * sizeof(std::uint32_t), "blocks must be packed");
+  const bool le = detail::host_is_little_endian();
+  const std::string bo(1, le ? '<' : '>');
+  const std::string vt = npy_descr(sizeof(T) == 4 ? DType::float32 : DType::float64);
+  const GridSpec<T>& s = g.spec;
+  const std::size_t W = grid_tile;
+  const std::uint64_t dims[3] = {s.nx(), s.ny(), s.nz()};
+  const std::int64_t tile = std::int64_t(W);
+  const Vec3<T> o = s.origin(), h = s.spacing();
+  const double origin[3] = {double(o.x), double(o.y), double(o.z)};
+  const double spacing[3] = {double(h.x), double(h.y), double(h.z)};
+  const double box[6] = {double(s.box.lo.x), double(s.box.lo.y), double(s.box.lo.z),
+                         double(s.box.hi.x), double(s.box.hi.y), double(s.box.hi.z)};
+  // numpy's 'U' dtype: UTF-32 code units in the array's byte order.
+  const std::string text = to_string(s.centering);
+  std::string centring;
+  for (char c : text) {
+    const char unit[4] = {le ? c : '\0', '\0', '\0', le ? '\0' : c};
+    centring.append(unit, 4);
+  }
+  const std::size_t m = g.blocks.size();
+  using Shape = std::vector<std::size_t>;
+  const std::vector<NpzMember> members = {
+      {"dims", npy_header(bo + "u8", Shape{3}), dims, sizeof dims},
+      {"tile", npy_header(bo + "i8", Shape{}), &tile, sizeof tile},
+      {"origin", npy_header(bo + "f8", Shape{3}), origin, sizeof origin},
+      {"spacing", npy_header(bo + "f8", Shape{3}), spacing, sizeof spacing},
+      {"box", npy_header(bo + "f8", Shape{2, 3}), box, sizeof box},
+      {"band", npy_header(vt, Shape{}), &g.band, sizeof(T)},
+      {"centering", npy_header(bo + "U" + std::to_string(text.size()), Shape{}), centring.data(),
+       centring.size()},
+      {"blocks", npy_header(bo + "u4", Shape{m, 3}), g.blocks.data(),
+       std::uint64_t(m) * sizeof(g.blocks[0])},
+      {"tile_code", npy_header(bo + "i4", Shape{g.tiles[2], g.tiles[1], g.tiles[0]}),
+       g.tile_code.data(), std::uint64_t(g.tile_code.size()) * sizeof(std::int32_t)},
+      {"values", npy_header(vt, Shape{m, W, W, W}), g.values.data(),
+       std::uint64_t(g.values.size()) * sizeof(T)},
+  };
+  return write_npz(path, members, opt);
+}
+
+/// True when `path` ends in `.npz` (the sparse output).
+inline bool is_npz_path(const std::string& path) {
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".npz") == 0;
+}
+
+} // namespace ebgeom::cli
