@@ -67,6 +67,27 @@ double median_time(int reps, const std::function<void()>& fn) {
   return t[t.size() / 2];
 }
 
+// Thread scaling measured in interleaved pairs (1 thread, then T threads, `reps` times): the
+// median of the per-pair ratios, which drifts of a shared or turbo-clocked machine affect less
+// than a ratio of two medians taken minutes apart.
+double paired_scaling(int reps, const std::function<void(int)>& fn, int threads) {
+  std::vector<double> r;
+  for (int i = 0; i < reps; ++i) {
+    auto t0 = std::chrono::steady_clock::now();
+    fn(1);
+    const double one = seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    fn(threads);
+    r.push_back(one / seconds_since(t0));
+  }
+  std::sort(r.begin(), r.end());
+  std::printf("  %d threads vs 1, paired (interleaved) runs: median %.2fx (runs:", threads,
+              r[r.size() / 2]);
+  for (double x : r) std::printf(" %.2f", x);
+  std::printf(")\n");
+  return r[r.size() / 2];
+}
+
 GridSpec<T> grid_over(const Aabb<T>& bounds, std::size_t n) {
   const Vec3<T> e = bounds.extent();
   Aabb<T> box = bounds;
@@ -211,6 +232,13 @@ int main(int argc, char** argv) {
     print_row("dense exact, tile evaluation (default)", o.dense, o.threads, tile2);
     std::printf("  %d threads vs 1: %.2fx; %s\n", o.threads, tile / tile2,
                 a == b ? "identical values" : "VALUES DIFFER");
+    paired_scaling(
+        o.reps,
+        [&](int t) {
+          opt.exec.threads = t;
+          (void)sample_grid(sdf, g, Span<T>(b), opt);
+        },
+        o.threads);
     const double n3 = double(o.band) / double(o.dense);
     std::printf("  extrapolated dense %zu^3 (x%.0f): %.1f s (1 thread)\n", o.band, n3 * n3 * n3,
                 best * n3 * n3 * n3);
@@ -235,6 +263,13 @@ int main(int argc, char** argv) {
       const double dn = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(out), opt); });
       print_row("narrow band, dense output", o.band, threads, dn);
     }
+    paired_scaling(
+        o.reps,
+        [&](int t) {
+          opt.exec.threads = t;
+          (void)sample_grid_sparse(sdf, g, opt);
+        },
+        o.threads);
     std::printf("  kept blocks: %zu of %zu tiles\n", blocks,
                 ((g.nx() + 7) / 8) * ((g.ny() + 7) / 8) * ((g.nz() + 7) / 8));
 #if defined(EBGEOM_BENCH_HAVE_OPENVDB)
