@@ -8,9 +8,6 @@
 /// non-NaN operands are exact; ±0 squares to +0); the generic code remains the reference and the
 /// fallback on other targets.
 
-#include <cstdint>
-#include <type_traits>
-
 #include "ebgeom/bvh/wide_bvh.hpp"
 
 #if defined(__SSE2__) || defined(__AVX__)
@@ -109,34 +106,5 @@ EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<double, 4>& n, const Vec
                                      _mm256_mul_pd(dz, dz)));
 }
 #endif
-
-/// Bit l set when `d2[l] <= bound` (lanes l < W <= 32): which lanes of a leaf block can improve
-/// on the best distance. One compare and a movemask for 8 floats or 4 doubles under AVX.
-template <class T, int W>
-EBGEOM_FORCE_INLINE std::uint32_t lanes_at_most(const T (&d2)[W], T bound) noexcept {
-  static_assert(W <= 32, "lanes_at_most: at most 32 lanes");
-#if defined(__AVX__)
-  if constexpr (std::is_same_v<T, float> && W == 8)
-    return std::uint32_t(
-        _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(d2), _mm256_set1_ps(bound), _CMP_LE_OQ)));
-  if constexpr (std::is_same_v<T, double> && W == 4)
-    return std::uint32_t(
-        _mm256_movemask_pd(_mm256_cmp_pd(_mm256_loadu_pd(d2), _mm256_set1_pd(bound), _CMP_LE_OQ)));
-#endif
-  std::uint32_t m = 0;
-  for (int l = 0; l < W; ++l) m |= std::uint32_t(d2[l] <= bound) << l;
-  return m;
-}
-
-/// Index of the lowest set bit of a non-zero mask.
-EBGEOM_FORCE_INLINE int lowest_lane(std::uint32_t m) noexcept {
-#if defined(__GNUC__) || defined(__clang__)
-  return __builtin_ctz(m);
-#else
-  int l = 0;
-  while (!(m & 1u)) m >>= 1, ++l;
-  return l;
-#endif
-}
 
 } // namespace ebgeom::bvh
