@@ -23,9 +23,6 @@
 namespace ebgeom::bvh {
 
 namespace detail {
-/// Most bins `build_sah` uses per axis.
-inline constexpr int sah_max_bins = 64;
-
 /// Four lanes of T with the few operations the SAH builder needs, each lane's result equal to the
 /// scalar one (`min(a, b)` is `b < a ? b : a`, as `std::min`, for non-NaN values). SSE2 on x86-64
 /// (the compilers do not vectorise these reliably on their own); plain arrays elsewhere.
@@ -255,8 +252,7 @@ BuildTree<T> build_sah(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
     if (block > 1 && count <= 4 * block) {
       // Small node: whole blocks, cut after a multiple of `block` along the longest axis. The
       // order is total, so selecting the first `mid` gives the halves SahPartition's sort gives.
-      const std::uint32_t k = std::max<std::uint32_t>(1, (count + block) / (2 * block));
-      mid = std::min(count - 1, k * block);
+      mid = detail::block_cut(count, block);
       detail::select_halves(p, count, mid, t.cbox.longest_axis(), cbox, cent);
     } else {
       const Vec3<T> ext = t.cbox.extent();
@@ -309,39 +305,17 @@ BuildTree<T> build_sah(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
           bins[0][a][b].extend(bins[1][a][b]);
           counts[0][a][b] += counts[1][a][b];
         }
-      // The sweep of SahPartition, operation for operation (same costs, same choice).
-      T best_cost = std::numeric_limits<T>::infinity();
-      int best_axis = -1, best_bin = 0;
-      for (int axis = a0; axis < a1; ++axis) {
-        if (!(ext[axis] > T(0))) continue;
-        T right_cost[max_bins];
-        Aabb<T> acc;
-        std::uint32_t cnt = 0;
-        for (int b = nb - 1; b > 0; --b) {
-          acc.extend(bins[0][axis][b].aabb());
-          cnt += counts[0][axis][b];
-          right_cost[b] = cnt ? acc.half_area() * T((cnt + block - 1) / block) : T(0);
-        }
-        acc = Aabb<T>();
-        cnt = 0;
-        for (int b = 0; b < nb - 1; ++b) {
-          acc.extend(bins[0][axis][b].aabb());
-          cnt += counts[0][axis][b];
-          if (cnt == 0 || cnt == count) continue;
-          const T cost = acc.half_area() * T((cnt + block - 1) / block) + right_cost[b + 1];
-          if (cost < best_cost) {
-            best_cost = cost;
-            best_axis = axis;
-            best_bin = b;
-          }
-        }
-      }
-      if (best_axis < 0) {
+      // SahPartition's sweep (same costs, same choice).
+      const detail::SahSplit split = detail::sah_sweep<T>(
+          ext, a0, a1, nb, count, block, [&](int a, int b) { return bins[0][a][b].aabb(); },
+          [&](int a, int b) { return counts[0][a][b]; });
+      const int best_bin = split.bin;
+      if (split.axis < 0) {
         // All centroids coincide (or no split separates them): median split, as SahPartition.
         mid = count / 2;
         detail::select_halves(p, count, mid, t.cbox.longest_axis(), cbox, cent);
       } else {
-        const int ax = best_axis;
+        const int ax = split.axis;
         const T tau = detail::bin_threshold(t.cbox.lo[ax], t.cbox.hi[ax], scale[ax], top, best_bin);
         auto left = [&](const SahPrim<T>& q) { return q.c[ax] < tau; };
         // Two-cursor partition; each primitive's centroid joins its side's box exactly once.

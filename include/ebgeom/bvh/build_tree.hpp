@@ -120,6 +120,56 @@ Parts median_split(const PartitionInput<T>& in, std::uint32_t* idx, std::uint32_
   p.ends[1] = n;
   return p;
 }
+/// Most bins the SAH builders use per axis.
+inline constexpr int sah_max_bins = 64;
+/// Where a small node of `n` primitives (2 <= n <= 4·block) is cut so that both sides hold whole
+/// blocks: after the multiple of `block` nearest the middle (at least one block, at most n - 1).
+inline std::uint32_t block_cut(std::uint32_t n, std::uint32_t block) noexcept {
+  const std::uint32_t k = std::max<std::uint32_t>(1, (n + block) / (2 * block));
+  return std::min(n - 1, k * block);
+}
+/// The SAH split chosen by `sah_sweep`: bins 0..bin of `axis` go left; axis -1 when none exists.
+struct SahSplit {
+  int axis = -1;
+  int bin = 0;
+};
+/// The binned-SAH sweep over axes a0..a1-1 of a node of `n` primitives: for every cut between
+/// bins, cost = half_area(L)·blocks(L) + half_area(R)·blocks(R), with blocks(X) = ceil(|X| /
+/// block); the cheapest cut with both sides non-empty wins (the first on ties; flat axes are
+/// skipped). `box(a, b)` and `count(a, b)` give bin b of axis a. Shared by `SahPartition` and
+/// `build_sah`, which must choose the same splits.
+template <class T, class BoxFn, class CountFn>
+EBGEOM_FORCE_INLINE SahSplit sah_sweep(const Vec3<T>& ext, int a0, int a1, int nb, std::uint32_t n,
+                                       std::uint32_t block, const BoxFn& box,
+                                       const CountFn& count) {
+  constexpr int max_bins = sah_max_bins;
+  T best_cost = std::numeric_limits<T>::infinity();
+  SahSplit best;
+  for (int axis = a0; axis < a1; ++axis) {
+    if (!(ext[axis] > T(0))) continue;
+    T right_cost[max_bins];
+    Aabb<T> acc;
+    std::uint32_t cnt = 0;
+    for (int b = nb - 1; b > 0; --b) {
+      acc.extend(box(axis, b));
+      cnt += count(axis, b);
+      right_cost[b] = cnt ? acc.half_area() * T((cnt + block - 1) / block) : T(0);
+    }
+    acc = Aabb<T>();
+    cnt = 0;
+    for (int b = 0; b < nb - 1; ++b) {
+      acc.extend(box(axis, b));
+      cnt += count(axis, b);
+      if (cnt == 0 || cnt == n) continue;
+      const T cost = acc.half_area() * T((cnt + block - 1) / block) + right_cost[b + 1];
+      if (cost < best_cost) {
+        best_cost = cost;
+        best = {axis, b};
+      }
+    }
+  }
+  return best;
+}
 } // namespace detail
 
 /// Median split on the longest centroid axis: two halves of equal size.
@@ -171,11 +221,10 @@ struct SahPartition {
     parts.ends[1] = n;
     if (block > 1 && n <= 4 * block) {
       detail::sort_by_axis(idx, n, in.centroids, in.centroid_box.longest_axis());
-      const std::uint32_t k = std::max<std::uint32_t>(1, (n + block) / (2 * block));
-      parts.ends[0] = std::min(n - 1, k * block);
+      parts.ends[0] = detail::block_cut(n, block);
       return parts;
     }
-    constexpr int max_bins = 64;
+    constexpr int max_bins = detail::sah_max_bins;
     const int nb = std::max(2, std::min(bins, max_bins));
     const Vec3<T> lo = in.centroid_box.lo, ext = in.centroid_box.extent();
     Vec3<T> scale;
@@ -197,36 +246,13 @@ struct SahPartition {
         ++bcount[a][b];
       }
     }
-    T best_cost = std::numeric_limits<T>::infinity();
-    int best_axis = -1, best_bin = 0;
-    for (int axis = a0; axis < a1; ++axis) {
-      if (!(ext[axis] > T(0))) continue;
-      T right_cost[max_bins];
-      Aabb<T> acc;
-      std::uint32_t cnt = 0;
-      for (int b = nb - 1; b > 0; --b) {
-        acc.extend(bbox[axis][b]);
-        cnt += bcount[axis][b];
-        right_cost[b] = cnt ? acc.half_area() * T((cnt + block - 1) / block) : T(0);
-      }
-      acc = Aabb<T>();
-      cnt = 0;
-      for (int b = 0; b < nb - 1; ++b) {
-        acc.extend(bbox[axis][b]);
-        cnt += bcount[axis][b];
-        if (cnt == 0 || cnt == n) continue;
-        const T cost = acc.half_area() * T((cnt + block - 1) / block) + right_cost[b + 1];
-        if (cost < best_cost) {
-          best_cost = cost;
-          best_axis = axis;
-          best_bin = b;
-        }
-      }
-    }
-    if (best_axis < 0) return detail::median_split(in, idx, n);
-    const int ax = best_axis;
+    const detail::SahSplit split = detail::sah_sweep<T>(
+        ext, a0, a1, nb, n, block, [&](int a, int b) -> const Aabb<T>& { return bbox[a][b]; },
+        [&](int a, int b) { return bcount[a][b]; });
+    if (split.axis < 0) return detail::median_split(in, idx, n);
+    const int ax = split.axis;
     std::uint32_t* mid = std::partition(idx, idx + n, [&](std::uint32_t p) {
-      return std::min(nb - 1, int((in.centroids[p][ax] - lo[ax]) * scale[ax])) <= best_bin;
+      return std::min(nb - 1, int((in.centroids[p][ax] - lo[ax]) * scale[ax])) <= split.bin;
     });
     parts.ends[0] = std::uint32_t(mid - idx);
     return parts;

@@ -139,6 +139,25 @@ inline int scan_neighbour(std::size_t x, std::size_t y, std::size_t z) noexcept 
   return -1;
 }
 
+/// Gathers the `s[0]·s[1]·s[2]` lattice points of the tile at `o` (x fastest), evaluates them all
+/// with one `eval(points, values)` call and scatters the values into `vals` (stride 8 per axis).
+template <class T, class Eval>
+void eval_packed(const GridFrame<T>& f, const std::array<std::size_t, 3>& o,
+                 const std::array<std::size_t, 3>& s, T* vals, Eval&& eval) {
+  constexpr std::size_t W = grid_tile;
+  Vec3<T> pts[W * W * W];
+  T tmp[W * W * W];
+  std::size_t n = 0;
+  for (std::size_t z = 0; z < s[2]; ++z)
+    for (std::size_t y = 0; y < s[1]; ++y)
+      for (std::size_t x = 0; x < s[0]; ++x) pts[n++] = f.point(o[0] + x, o[1] + y, o[2] + z);
+  eval(Span<const Vec3<T>>(pts, n), Span<T>(tmp, n));
+  n = 0;
+  for (std::size_t z = 0; z < s[2]; ++z)
+    for (std::size_t y = 0; y < s[1]; ++y)
+      for (std::size_t x = 0; x < s[0]; ++x) vals[x + W * (y + W * z)] = tmp[n++];
+}
+
 /// Fills `vals[x + 8 (y + 8 z)]` (local indices, stride 8 even for partial tiles) with the values
 /// of tile `job.tile`: S (dense) or the banded values of `TileParams`. Bit for bit what per-point
 /// evaluation gives (then clamped) at every sample inside the band.
@@ -156,17 +175,9 @@ void eval_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
 
   if constexpr (has_lattice_eval_v<S>) {
     if (prm.band == 0 && prm.tile) {
-      Vec3<T> pts[W * W * W];
-      T tmp[W * W * W];
-      std::size_t n = 0;
-      for (std::size_t z = 0; z < sz; ++z)
-        for (std::size_t y = 0; y < sy; ++y)
-          for (std::size_t x = 0; x < sx; ++x) pts[n++] = f.point(i0 + x, j0 + y, k0 + z);
-      sdf.eval_lattice(Span<const Vec3<T>>(pts, n), {{sx, sy, sz}}, Span<T>(tmp, n));
-      n = 0;
-      for (std::size_t z = 0; z < sz; ++z)
-        for (std::size_t y = 0; y < sy; ++y)
-          for (std::size_t x = 0; x < sx; ++x) vals[x + W * (y + W * z)] = tmp[n++];
+      eval_packed(f, {{i0, j0, k0}}, {{sx, sy, sz}}, vals, [&](Span<const Vec3<T>> p, Span<T> v) {
+        sdf.eval_lattice(p, {{sx, sy, sz}}, v);
+      });
       return;
     }
   }
@@ -292,17 +303,8 @@ void eval_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
   }
 
   if constexpr (has_batch_eval_v<S>) {
-    Vec3<T> pts[W * W * W];
-    T tmp[W * W * W];
-    std::size_t n = 0;
-    for (std::size_t z = 0; z < sz; ++z)
-      for (std::size_t y = 0; y < sy; ++y)
-        for (std::size_t x = 0; x < sx; ++x) pts[n++] = f.point(i0 + x, j0 + y, k0 + z);
-    sdf.eval(Span<const Vec3<T>>(pts, n), Span<T>(tmp, n));
-    n = 0;
-    for (std::size_t z = 0; z < sz; ++z)
-      for (std::size_t y = 0; y < sy; ++y)
-        for (std::size_t x = 0; x < sx; ++x) vals[x + W * (y + W * z)] = tmp[n++];
+    eval_packed(f, {{i0, j0, k0}}, {{sx, sy, sz}}, vals,
+                [&](Span<const Vec3<T>> p, Span<T> v) { sdf.eval(p, v); });
   } else {
     for (std::size_t z = 0; z < sz; ++z)
       for (std::size_t y = 0; y < sy; ++y)
