@@ -28,7 +28,8 @@ namespace detail {
 /// (the compilers do not vectorise these reliably on their own); plain arrays elsewhere.
 template <class T> struct Lanes4 {
   T v[4];
-  static Lanes4 load(const T* p) noexcept { return {{p[0], p[1], p[2], p[3]}}; }
+  /// Lanes 0-2 from p[0..2]; lane 3 is 0 here (the SSE versions read p[3], see `SahPrim`).
+  static Lanes4 load(const T* p) noexcept { return {{p[0], p[1], p[2], T(0)}}; }
   static Lanes4 splat(T x) noexcept { return {{x, x, x, x}}; }
   void store(T* p) const noexcept {
     for (int j = 0; j < 4; ++j) p[j] = v[j];
@@ -44,10 +45,11 @@ template <class T> struct Lanes4 {
     return r;
   }
   /// Bin of lane j in a flat array of 4 runs of `sah_max_bins`: min(int((c - lo) * scale), top)
-  /// + j * sah_max_bins, for (c - lo) * scale >= 0.
+  /// + j * sah_max_bins, for (c - lo) * scale >= 0 (lanes 0-2; out[3] is not used).
   static void bin(const T* c, const Lanes4& lo, const Lanes4& scale, T top,
                   std::uint32_t* out) noexcept {
-    for (int j = 0; j < 4; ++j)
+    out[3] = 0;
+    for (int j = 0; j < 3; ++j)
       out[j] = std::uint32_t(std::min((c[j] - lo.v[j]) * scale.v[j], top)) + j * sah_max_bins;
   }
 };
@@ -93,15 +95,19 @@ template <> struct Lanes4<double> {
 };
 #endif
 
-/// A primitive as the fast SAH builder moves it: box and centroid, each in 4 lanes (lane 3 is
-/// zero) so that a box update or a bin index is one 4-wide operation, and the input index.
-/// 52 B (float), 104 B (double).
+/// A primitive as the fast SAH builder moves it: centroid, box corners and input index, packed
+/// into 40 B (float) / 80 B (double), so the top levels of a big build stream less memory. A box
+/// update or a bin index is one 4-wide operation on a triple read as 4 lanes: lane 3 then holds
+/// the next field (lo.x after c, hi.x after lo, the index bits after hi), which no result uses
+/// (boxes and bins take lanes 0-2; min/max/compare on any bits is harmless).
 template <class T> struct SahPrim {
-  T lo[4];
-  T hi[4];
-  T c[4];
+  T v[9]; ///< c.xyz, lo.xyz, hi.xyz
   std::uint32_t index;
+  const T* c() const noexcept { return v; }
+  const T* lo() const noexcept { return v + 3; }
+  const T* hi() const noexcept { return v + 6; }
 };
+static_assert(sizeof(SahPrim<float>) == 40 && sizeof(SahPrim<double>) == 80);
 /// A bin (or any box) in 4 lanes.
 template <class T> struct SahBox {
   Lanes4<T> lo, hi;
@@ -169,15 +175,15 @@ template <class T>
 void select_halves(SahPrim<T>* p, std::uint32_t count, std::uint32_t mid, int axis,
                    Aabb<T> (&box)[2], Aabb<T> (&cbox)[2]) {
   std::nth_element(p, p + mid, p + count, [axis](const SahPrim<T>& a, const SahPrim<T>& b) {
-    return a.c[axis] < b.c[axis] || (a.c[axis] == b.c[axis] && a.index < b.index);
+    return a.v[axis] < b.v[axis] || (a.v[axis] == b.v[axis] && a.index < b.index);
   });
   for (int h = 0; h < 2; ++h) {
     SahBox<T> bb, cb;
     bb.reset();
     cb.reset();
     for (std::uint32_t i = h ? mid : 0, e = h ? count : mid; i < e; ++i) {
-      bb.extend(p[i].lo, p[i].hi);
-      cb.extend(p[i].c, p[i].c);
+      bb.extend(p[i].lo(), p[i].hi());
+      cb.extend(p[i].c(), p[i].c());
     }
     box[h] = bb.aabb();
     cbox[h] = cb.aabb();
@@ -214,8 +220,10 @@ BuildTree<T> build_sah(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
   for (std::uint32_t i = 0; i < n; ++i) {
     const Aabb<T>& b = boxes[i];
     const Vec3<T>& c = centroids[i];
-    prims[i] = {
-        {b.lo.x, b.lo.y, b.lo.z, T(0)}, {b.hi.x, b.hi.y, b.hi.z, T(0)}, {c.x, c.y, c.z, T(0)}, i};
+    SahPrim<T>& q = prims[i]; // value-initialised: the double record's padding is zero
+    const T v[9] = {c.x, c.y, c.z, b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z};
+    std::copy(v, v + 9, q.v);
+    q.index = i;
     root_box.extend(b);
     root_cbox.extend(c);
   }
@@ -273,17 +281,17 @@ BuildTree<T> build_sah(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
       auto bin3 = [&](const SahPrim<T>& q, SahBox<T>(&set)[4][max_bins],
                       std::uint32_t(&cnt)[4][max_bins]) {
         std::uint32_t b[4]; // flat indices into set and cnt
-        Lanes4<T>::bin(q.c, lo4, scale4, top, b);
+        Lanes4<T>::bin(q.c(), lo4, scale4, top, b);
         for (int a = 0; a < 3; ++a) {
-          (&set[0][0])[b[a]].extend(q.lo, q.hi);
+          (&set[0][0])[b[a]].extend(q.lo(), q.hi());
           ++(&cnt[0][0])[b[a]];
         }
       };
       const T lo_l = lo[la], scale_l = scale[la];
       auto bin1 = [&](const SahPrim<T>& q, SahBox<T>(&set)[4][max_bins],
                       std::uint32_t(&cnt)[4][max_bins]) {
-        const int b = int(std::min((q.c[la] - lo_l) * scale_l, top));
-        set[la][b].extend(q.lo, q.hi);
+        const int b = int(std::min((q.v[la] - lo_l) * scale_l, top));
+        set[la][b].extend(q.lo(), q.hi());
         ++cnt[la][b];
       };
       std::uint32_t i = 0;
@@ -317,7 +325,7 @@ BuildTree<T> build_sah(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
       } else {
         const int ax = split.axis;
         const T tau = detail::bin_threshold(t.cbox.lo[ax], t.cbox.hi[ax], scale[ax], top, best_bin);
-        auto left = [&](const SahPrim<T>& q) { return q.c[ax] < tau; };
+        auto left = [&](const SahPrim<T>& q) { return q.v[ax] < tau; };
         // Two-cursor partition; each primitive's centroid joins its side's box exactly once.
         SahPrim<T>* first = p;
         SahPrim<T>* last = p + count;
@@ -325,13 +333,13 @@ BuildTree<T> build_sah(Span<const Aabb<T>> boxes, Span<const Vec3<T>> centroids,
         lc.reset();
         rc.reset();
         for (;;) {
-          for (; first != last && left(*first); ++first) lc.extend(first->c, first->c);
+          for (; first != last && left(*first); ++first) lc.extend(first->c(), first->c());
           if (first == last) break;
           --last;
-          for (; first != last && !left(*last); --last) rc.extend(last->c, last->c);
-          rc.extend(first->c, first->c);
+          for (; first != last && !left(*last); --last) rc.extend(last->c(), last->c());
+          rc.extend(first->c(), first->c());
           if (first == last) break;
-          lc.extend(last->c, last->c);
+          lc.extend(last->c(), last->c());
           std::swap(*first, *last);
           ++first;
         }
