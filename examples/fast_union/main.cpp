@@ -1,13 +1,22 @@
 // The EBGeometry seeds' union example: M^3 spheres of radius r on a lattice in [-1, 1]^3, their
-// standard union (every sphere per query) against the BVH-accelerated union. Prints the times per
-// query and the speedups, and checks that every union gives the same value bit for bit.
+// standard union (every sphere per query) against the accelerated unions. Prints the times per
+// query and the speedups, and checks that every union gives the same value bit for bit (exit 1
+// otherwise).
 //
 // Two standard unions are timed: the seeds' design (a vector of shared_ptr to a polymorphic SDF
 // base, one virtual call per sphere per query: EBGeometry's `Union<T>`), which the seeds' 7,580x
 // figure is measured against, and ebgeom's own inlined linear loop over a vector of value-type
-// spheres (no virtual call; vectorised), a much faster baseline.
+// spheres (no virtual call), a faster baseline. Two accelerated ones: `BvhUnion` (a nearest search
+// per query) and `CachedUnion` (a BvhUnion plus a grid of candidate lists over [-1, 1]^3), the
+// latter both one point at a time and through its batch `eval` (which prefetches).
 //
-// Usage: ebgeom_example_fast_union [M=40] [samples=1000] [repetitions=5]
+// Every union is timed on the same `samples` random points (the seeds' protocol; repetitions
+// reuse them, so a fast union's working set stays in the CPU caches after the first), and the
+// accelerated ones also on `fresh` other random points, so many that their cells, lists and
+// spheres come from memory: the cost of scattered queries. A linear union's cost does not depend
+// on the points (it reads every sphere), so its time from the first set is the reference for both.
+//
+// Usage: ebgeom_example_fast_union [M=40] [samples=1000] [repetitions=5] [fresh=200000]
 
 #include <algorithm>
 #include <chrono>
@@ -19,12 +28,12 @@
 #include <vector>
 
 #include "ebgeom/sdf/bvh_union.hpp"
+#include "ebgeom/sdf/cached_union.hpp"
 #include "ebgeom/sdf/shapes.hpp"
 
 namespace {
 using T = double;
 using ebgeom::Aabb;
-using ebgeom::SdfKind;
 using ebgeom::Vec3;
 
 using Ball = ebgeom::Sphere<T>; // exact
@@ -50,16 +59,41 @@ template <class Fn> double seconds(Fn&& fn) {
   fn();
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+std::vector<Vec3<T>> random_points(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<T> u(-1, 1);
+  std::vector<Vec3<T>> pts(n);
+  for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+  return pts;
+}
+
+/// Median over `reps` runs of `fn(points, out)`, per point.
+template <class Fn>
+double per_query(int reps, const std::vector<Vec3<T>>& pts, std::vector<T>& out, Fn&& fn) {
+  out.resize(pts.size());
+  std::vector<double> t;
+  for (int r = 0; r < reps; ++r) t.push_back(seconds([&] { fn(pts, out); }));
+  return median(t) / double(pts.size());
+}
+
+std::size_t mismatches(const std::vector<T>& a, const std::vector<T>& b) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(T)) != 0;
+  return n;
+}
 } // namespace
 
 int main(int argc, char** argv) {
   const int M = argc > 1 ? std::atoi(argv[1]) : 40;
   const int samples = argc > 2 ? std::atoi(argv[2]) : 1000;
   const int reps = argc > 3 ? std::atoi(argv[3]) : 5;
+  const int fresh = argc > 4 ? std::atoi(argv[4]) : 200000;
   constexpr T radius = 0.02;
   const T delta = (2.0 - 2 * M * radius) / (M + 1);
-  if (M < 1 || samples < 1 || reps < 1 || delta < 0) {
-    std::fprintf(stderr, "usage: %s [M >= 1, 2 M r <= 2] [samples >= 1] [repetitions >= 1]\n",
+  if (M < 1 || samples < 1 || reps < 1 || fresh < 0 || delta < 0) {
+    std::fprintf(stderr,
+                 "usage: %s [M >= 1, 2 M r <= 2] [samples >= 1] [repetitions >= 1] [fresh >= 0]\n",
                  argv[0]);
     return 2;
   }
@@ -76,54 +110,96 @@ int main(int argc, char** argv) {
   // The seeds' standard union: shared_ptr<SDF> objects, one virtual call per sphere.
   std::vector<std::shared_ptr<const SignedDistanceFunction>> poly;
   for (const Ball& b : spheres) poly.push_back(std::make_shared<const SphereSdf>(b));
-  auto seeds_union = [&](const Vec3<T>& p) {
-    T d = std::numeric_limits<T>::infinity();
-    for (const auto& s : poly) d = std::min(d, s->signedDistance(p));
-    return d;
+  auto seeds_union = [&](const std::vector<Vec3<T>>& pts, std::vector<T>& out) {
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      T d = std::numeric_limits<T>::infinity();
+      for (const auto& s : poly) d = std::min(d, s->signedDistance(pts[i]));
+      out[i] = d;
+    }
   };
   // ebgeom's linear union: value types, inlined.
   const std::vector<Ball> linear = spheres;
-  auto linear_union = [&](const Vec3<T>& p) {
-    T d = std::numeric_limits<T>::infinity();
-    for (const Ball& b : linear) d = std::min(d, b(p));
-    return d;
+  auto linear_union = [&](const std::vector<Vec3<T>>& pts, std::vector<T>& out) {
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      T d = std::numeric_limits<T>::infinity();
+      for (const Ball& b : linear) d = std::min(d, b(pts[i]));
+      out[i] = d;
+    }
   };
-  ebgeom::BvhUnion<Ball> fast;
-  const double build = seconds([&] { fast = ebgeom::BvhUnion<Ball>(spheres); });
-  std::printf("BVH build: %.2f ms\n", build * 1e3);
 
-  std::mt19937_64 rng(2024);
-  std::uniform_real_distribution<T> u(-1, 1);
-  std::vector<Vec3<T>> pts(static_cast<std::size_t>(samples));
-  for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+  ebgeom::BvhUnion<Ball> bvh;
+  const double bvh_build = seconds([&] { bvh = ebgeom::BvhUnion<Ball>(spheres); });
+  // The cache covers the query domain [-1, 1]^3 (the default region, the spheres' box grown by
+  // 1/16 of its side, would cover it too). Built from a copy of the BVH union.
+  ebgeom::UnionCacheOptions<T> opt;
+  opt.region = Aabb<T>::of({-1, -1, -1}, {1, 1, 1});
+  ebgeom::CachedUnion<Ball> cached;
+  const double cache_build = seconds([&] { cached = ebgeom::CachedUnion<Ball>(bvh, opt); });
+  const ebgeom::UnionCacheStats& st = cached.stats();
+  std::printf("BVH build: %.1f ms\n", bvh_build * 1e3);
+  std::printf("cache build: %.1f ms; %.1f MiB: %u x %u x %u top cells, %zu split, %zu leaves, "
+              "depth %d, %zu fallback%s;\n  per uniform query: %.2f candidates (at most %zu), "
+              "%.2f octree levels\n",
+              cache_build * 1e3, double(st.bytes) / (1 << 20), st.dims[0], st.dims[1], st.dims[2],
+              st.split_cells, st.leaf_cells, st.depth, st.fallback_cells,
+              st.capped ? " (capped by max_bytes)" : "", st.mean_candidates, st.longest_list,
+              st.mean_level);
 
-  std::vector<T> a(pts.size()), b(pts.size()), c(pts.size());
-  std::vector<double> t_seeds, t_linear, t_fast;
-  for (int r = 0; r < reps; ++r) {
-    t_seeds.push_back(seconds([&] {
-      for (std::size_t i = 0; i < pts.size(); ++i) a[i] = seeds_union(pts[i]);
-    }));
-    t_linear.push_back(seconds([&] {
-      for (std::size_t i = 0; i < pts.size(); ++i) b[i] = linear_union(pts[i]);
-    }));
-    t_fast.push_back(seconds([&] {
-      for (std::size_t i = 0; i < pts.size(); ++i) c[i] = fast(pts[i]);
-    }));
+  auto bvh_union = [&](const std::vector<Vec3<T>>& pts, std::vector<T>& out) {
+    for (std::size_t i = 0; i < pts.size(); ++i) out[i] = bvh(pts[i]);
+  };
+  auto cached_one = [&](const std::vector<Vec3<T>>& pts, std::vector<T>& out) {
+    for (std::size_t i = 0; i < pts.size(); ++i) out[i] = cached(pts[i]);
+  };
+  auto cached_batch = [&](const std::vector<Vec3<T>>& pts, std::vector<T>& out) {
+    cached.eval(pts, out);
+  };
+
+  const auto pts = random_points(std::size_t(samples), 2024);
+  std::vector<T> v_seeds, v_linear, v_bvh, v_one, v_batch;
+  const double t_seeds = per_query(reps, pts, v_seeds, seeds_union);
+  const double t_linear = per_query(reps, pts, v_linear, linear_union);
+  const double t_bvh = per_query(reps, pts, v_bvh, bvh_union);
+  const double t_one = per_query(reps, pts, v_one, cached_one);
+  const double t_batch = per_query(reps, pts, v_batch, cached_batch);
+  std::size_t bad = mismatches(v_seeds, v_linear) + mismatches(v_seeds, v_bvh) +
+                    mismatches(v_seeds, v_one) + mismatches(v_seeds, v_batch);
+  std::size_t checked = pts.size();
+
+  std::printf("per query, medians of %d runs (ms), and the speedups vs the seeds-style union and "
+              "vs the inlined linear union:\n",
+              reps);
+  std::printf("  seeds-style union (virtual call per sphere): %.6f\n", t_seeds * 1e3);
+  std::printf("  inlined linear union:                        %.6f\n", t_linear * 1e3);
+  auto row = [&](const char* name, double t) {
+    std::printf("  %-44s %.6f  %8.0fx  %8.0fx\n", name, t * 1e3, t_seeds / t, t_linear / t);
+  };
+  std::printf(" on the same %d points, %d times:\n", samples, reps);
+  row("BVH union", t_bvh);
+  row("cached union, one point at a time", t_one);
+  row("cached union, batch eval", t_batch);
+  if (fresh > 0) {
+    const auto many = random_points(std::size_t(fresh), 7);
+    std::vector<T> w_bvh, w_one, w_batch, w_linear(many.size() / 200);
+    const double f_bvh = per_query(reps, many, w_bvh, bvh_union);
+    const double f_one = per_query(reps, many, w_one, cached_one);
+    const double f_batch = per_query(reps, many, w_batch, cached_batch);
+    bad += mismatches(w_bvh, w_one) + mismatches(w_bvh, w_batch);
+    checked += many.size();
+    // Every 200th point against the linear union too (all of them would take minutes).
+    for (std::size_t i = 0; i < w_linear.size(); ++i) {
+      T d = std::numeric_limits<T>::infinity();
+      for (const Ball& b : linear) d = std::min(d, b(many[200 * i]));
+      bad += std::memcmp(&d, &w_bvh[200 * i], sizeof(T)) != 0;
+    }
+    std::printf(" on %d fresh points (from memory):\n", fresh);
+    row("BVH union", f_bvh);
+    row("cached union, one point at a time", f_one);
+    row("cached union, batch eval", f_batch);
   }
-  std::size_t mismatches = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    mismatches +=
-        std::memcmp(&a[i], &c[i], sizeof(T)) != 0 || std::memcmp(&b[i], &c[i], sizeof(T)) != 0;
-  const double n = double(samples);
-  const double seeds_q = median(t_seeds) / n, linear_q = median(t_linear) / n,
-               fast_q = median(t_fast) / n;
-  std::printf("medians of %d runs of %d queries\n", reps, samples);
-  std::printf("standard union (virtual, as the seeds): %.6f ms per query\n", seeds_q * 1e3);
-  std::printf("linear union (inlined value types):     %.6f ms per query\n", linear_q * 1e3);
-  std::printf("BVH union:                              %.6f ms per query\n", fast_q * 1e3);
-  std::printf("speedup = %.1f (vs the seeds' standard union)\n", seeds_q / fast_q);
-  std::printf("speedup = %.1f (vs the inlined linear union)\n", linear_q / fast_q);
-  std::printf("identical values: %zu of %d%s\n", pts.size() - mismatches, samples,
-              mismatches ? "  MISMATCH" : "");
-  return mismatches ? 1 : 0;
+  if (bad)
+    std::printf("MISMATCH: %zu values differ\n", bad);
+  else
+    std::printf("identical values, bit for bit, at all %zu points\n", checked);
+  return bad ? 1 : 0;
 }

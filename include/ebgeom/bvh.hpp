@@ -8,5 +8,6 @@
 #include "ebgeom/bvh/traverse.hpp"
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/sdf/bvh_union.hpp"
+#include "ebgeom/sdf/cached_union.hpp"
 #include "ebgeom/sdf/dcel_sdf.hpp"
 #include "ebgeom/sdf/mesh_sdf.hpp"

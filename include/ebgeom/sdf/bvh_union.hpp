@@ -130,6 +130,10 @@ template <class S, int K = 4> class BvhUnion {
   /// Objects in the tree, in leaf order; `order()[i]` is the input index of `objects()[i]`.
   const std::vector<S>& objects() const noexcept { return objects_; }
   const std::vector<std::uint32_t>& order() const noexcept { return order_; }
+  /// Objects with unbounded boxes (kept outside the tree, evaluated by every query), in input
+  /// order; `unbounded_order()[i]` is the input index of `unbounded()[i]`.
+  const std::vector<S>& unbounded() const noexcept { return unbounded_; }
+  const std::vector<std::uint32_t>& unbounded_order() const noexcept { return unbounded_order_; }
   const bvh::WideBvh<T, K>& tree() const noexcept { return bvh_; }
 
  private:

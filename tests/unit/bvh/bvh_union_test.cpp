@@ -10,13 +10,15 @@
 #include "ebgeom/sdf/mesh_sdf.hpp"
 #include "ebgeom/sdf/shapes.hpp"
 #include "test_support.hpp"
+#include "union_scenes.hpp"
 
 using namespace ebgeom;
+using test::lattice;
+using test::same_bits;
+using test::SoftBall;
 
 namespace {
 template <class T> using Ball = Sphere<T>;
-/// The same ball declared as a bound: the union may not prune it.
-template <class T> struct SoftBall : Ball<T> { static constexpr SdfKind kind = SdfKind::bound; };
 template <class T> struct Slab { // unbounded: z < h
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
@@ -24,20 +26,6 @@ template <class T> struct Slab { // unbounded: z < h
   T operator()(const Vec3<T>& p) const noexcept { return p.z - h; }
   Aabb<T> bounds() const noexcept { return Aabb<T>::infinite(); }
 };
-template <class T> bool same_bits(T a, T b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
-
-/// The seeds' lattice: M^3 spheres of radius r in [-1, 1]^3.
-template <class T> std::vector<Ball<T>> lattice(int M, T r) {
-  const T delta = (T(2) - T(2) * T(M) * r) / T(M + 1);
-  std::vector<Ball<T>> v;
-  for (int i = 1; i <= M; ++i)
-    for (int j = 1; j <= M; ++j)
-      for (int k = 1; k <= M; ++k)
-        v.push_back({{T(-1) + T(i) * (delta + 2 * r) - r, T(-1) + T(j) * (delta + 2 * r) - r,
-                      T(-1) + T(k) * (delta + 2 * r) - r},
-                     r});
-  return v;
-}
 } // namespace
 
 template <class T> class BvhUnionTest : public ::testing::Test {};

@@ -1,0 +1,561 @@
+#pragma once
+/// \file
+/// `CachedUnion<S, K>`: a `BvhUnion` plus an exact *candidate cache*, for unions queried many
+/// times in a known region. The region is covered by a grid of cells, split into octants where
+/// needed; each leaf cell stores the few objects that can be the minimum anywhere in it. A query
+/// finds its cell in O(1) (plus one step per octree level) and takes the minimum over that list,
+/// in the same order as `linear()`, so the result equals `linear()` bit for bit.
+///
+/// Why a list can be trusted. Let C be a cell with centre c and half-diagonal h, and U = min_j
+/// S_j(c) the union at its centre. For 1-Lipschitz objects (every exact or bound SDF) the union is
+/// at most U + h anywhere in C, while object i is at least S_i(c) - h there and, when it is
+/// prunable (`prunable_in_union`), at least dist(C, box_i) outside its box. So i can be the
+/// minimum somewhere in C only if S_i(c) <= U + 2h and dist(C, box_i) <= max(U + h, 0). Both tests
+/// carry an absolute slack of 1024 ulps of the region's coordinates, which covers the rounding
+/// of every evaluation and of locating a point's cell, so no object that rounds to the minimum is
+/// ever left out: ties, signed zeros included, are resolved as in `linear()`.
+///
+/// Costs. Memory: 4 bytes per top cell, 32 bytes per split cell and 4 (n + 1) bytes per list of
+/// n >= 2 candidates (a single candidate is stored in the cell itself); `UnionCacheOptions` caps
+/// the total. Build: one BVH union query and one box-range search per top cell, then one
+/// evaluation of each parent candidate per child cell; parallel (`parallel_for`), and the result
+/// does not depend on the thread count. Queries outside the region, or in cells the memory cap
+/// left without a list, use the BVH. Objects with unbounded boxes are evaluated by every query.
+/// The cache is built only when `cacheable` (prunable and not `implicit`); otherwise every query
+/// uses the BVH.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+#include "ebgeom/bvh/traverse.hpp"
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
+#include "ebgeom/core/parallel.hpp"
+#include "ebgeom/core/result.hpp"
+#include "ebgeom/core/span.hpp"
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/sdf/bvh_union.hpp"
+#include "ebgeom/sdf/concepts.hpp"
+
+namespace ebgeom {
+
+namespace detail {
+/// Hint that `p` will be read soon (no effect where the compiler has no prefetch builtin).
+EBGEOM_FORCE_INLINE void prefetch(const void* p) noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+} // namespace detail
+
+/// Options of `CachedUnion`'s candidate cache.
+template <class T> struct UnionCacheOptions {
+  /// Region the cache covers; queries outside it use the BVH. Empty (the default): the box of the
+  /// bounded objects grown on every side by `margin` times its longest side. Must have a positive
+  /// extent on every axis, or no cache is built.
+  Aabb<T> region = Aabb<T>::empty();
+  T margin = T(0.0625);
+  /// Cells of the top grid per bounded object (near-cubic cells over the region).
+  double top_cells_per_object = 1.0;
+  /// A cell with more candidates than this is split into octants, up to `max_depth` levels below
+  /// the top grid and while `max_bytes` allows.
+  std::uint32_t max_candidates = 4;
+  /// A split is kept only when it cuts the mean list length over the cell's 8 octants by at
+  /// least this much times 8^level (the cell's volume in top cells): splits go where they save
+  /// the most work per uniformly random query, and not forever around points where many objects
+  /// are equally near (an octree level costs about one candidate's evaluation).
+  double min_split_gain = 1.0;
+  int max_depth = 8; ///< clamped to [0, 16]
+  /// Hard cap on the cache (top grid, split cells and lists; at most 4 GiB). Splits that might
+  /// exceed it are not made (longest lists are split first) and, if even the top grid's lists do
+  /// not fit, the top cells with the longest lists fall back to the BVH.
+  std::size_t max_bytes = std::size_t(256) << 20;
+  /// Threads for the build.
+  ExecOptions exec{};
+};
+
+/// What a `CachedUnion`'s cache holds.
+struct UnionCacheStats {
+  std::uint32_t dims[3] = {0, 0, 0}; ///< top grid resolution per axis
+  std::size_t top_cells = 0;         ///< cells of the top grid
+  std::size_t leaf_cells = 0;        ///< cells holding candidates (not split, not falling back)
+  std::size_t split_cells = 0;       ///< cells split into octants
+  std::size_t fallback_cells = 0;    ///< cells whose queries use the BVH
+  std::size_t candidates = 0;        ///< total length of the leaf cells' lists
+  std::size_t longest_list = 0;      ///< most candidates in one leaf cell
+  int depth = 0;                     ///< deepest level reached below the top grid
+  bool capped = false;               ///< `max_bytes` prevented a split or forced a fallback
+  std::size_t bytes = 0;             ///< memory of the cache (not counting the BVH and objects)
+  /// Mean candidates and octree level over the region's volume (the work of a uniformly random
+  /// query in it, fallback cells left out).
+  double mean_candidates = 0;
+  double mean_level = 0;
+};
+
+/// Where a point's query goes: `cached` is false outside the region (or without a cache) and in
+/// fallback cells, where the BVH answers; otherwise `slots` are the candidates (leaf-order slots
+/// of `bvh_union().objects()`, ascending) and `level` the cell's level below the top grid.
+struct UnionCacheCell {
+  bool cached = false;
+  Span<const std::uint32_t> slots;
+  int level = 0;
+};
+
+/// `BvhUnion<S, K>` with an exact candidate cache (see the file comment). Same values as
+/// `linear()`, bit for bit. Kind: that of `BvhUnion<S, K>`. Immutable after construction;
+/// concurrent queries are safe.
+template <class S, int K = 4> class CachedUnion {
+  EBGEOM_REQUIRE_SDF(S);
+
+ public:
+  using scalar_type = sdf_scalar_t<S>;
+  using T = scalar_type;
+  using Options = UnionCacheOptions<T>;
+  static constexpr SdfKind kind = BvhUnion<S, K>::kind;
+  /// The cache needs 1-Lipschitz objects (not `implicit`) that are prunable.
+  static constexpr bool cacheable = BvhUnion<S, K>::prunes && S::kind != SdfKind::implicit;
+
+  CachedUnion() = default;
+
+  /// Builds the cache over `u` (see `UnionCacheOptions` for the costs).
+  explicit CachedUnion(BvhUnion<S, K> u, const Options& options = {}) : union_(std::move(u)) {
+    if constexpr (cacheable) build(options);
+  }
+  explicit CachedUnion(std::vector<S> objects, const Options& options = {})
+      : CachedUnion(BvhUnion<S, K>(std::move(objects)), options) {}
+
+  /// Checked construction: NaN bounds are refused as by `BvhUnion::make`.
+  static Result<CachedUnion> make(std::vector<S> objects, const Options& options = {}) {
+    auto u = BvhUnion<S, K>::make(std::move(objects));
+    if (!u) return std::move(u).error();
+    return CachedUnion(std::move(u).value(), options);
+  }
+
+  /// min_i S_i(p), equal to `linear(p)` bit for bit; +inf for an empty union. O(candidates) in
+  /// the region, the BVH's O(log N) outside. Thread-safe.
+  T operator()(const Vec3<T>& p) const noexcept { return value(p, locate(p)); }
+
+  /// `out[i] = (*this)(points[i])` for a batch (the member `evaluate()` and the grid samplers
+  /// use). Same values; faster when the cache is larger than the CPU caches, because it locates
+  /// the cells of `batch` points at a time and prefetches their words, lists and objects before
+  /// evaluating any, so the memory latencies overlap. Precondition: `out.size() >= points.size()`.
+  void eval(Span<const Vec3<T>> points, Span<T> out) const noexcept {
+    // A software pipeline over groups of G points: in each round group g computes its top cells
+    // and requests their words, group g - 1 goes down one octree level, group g - 2 requests its
+    // lists (or single objects), group g - 3 requests the objects of its lists and group g - 4
+    // is evaluated; so four groups' memory requests are in flight while one group computes.
+    constexpr std::size_t G = 16, stages = 5;
+    struct Group {
+      const std::uint32_t* w[G];
+      T u[G][3];
+    } ring[stages];
+    const S* objs = union_.objects().data();
+    const std::size_t n = points.size(), groups = (n + G - 1) / G;
+    auto size_of = [&](std::size_t g) { return std::min(G, n - g * G); };
+    for (std::size_t r = 0; r < groups + stages - 1; ++r) {
+      if (r < groups) {
+        Group& x = ring[r % stages];
+        for (std::size_t j = 0, m = size_of(r); j < m; ++j) {
+          x.w[j] = top_word(points[r * G + j], x.u[j]);
+          if (x.w[j]) detail::prefetch(x.w[j]);
+        }
+      }
+      if (r >= 1 && r - 1 < groups) {
+        Group& x = ring[(r - 1) % stages];
+        for (std::size_t j = 0, m = size_of(r - 1); j < m; ++j)
+          if (x.w[j] && (*x.w[j] >> 30) == split_tag) {
+            x.w[j] = child_word(*x.w[j], x.u[j]);
+            detail::prefetch(x.w[j]);
+          }
+      }
+      if (r >= 2 && r - 2 < groups) {
+        Group& x = ring[(r - 2) % stages];
+        for (std::size_t j = 0, m = size_of(r - 2); j < m; ++j) {
+          if (!x.w[j]) continue;
+          while ((*x.w[j] >> 30) == split_tag) x.w[j] = child_word(*x.w[j], x.u[j]);
+          const std::uint32_t t = *x.w[j] >> 30;
+          if (t == list_tag)
+            detail::prefetch(lists_.data() + (*x.w[j] & index_mask));
+          else if (t == single_tag)
+            detail::prefetch(objs + *x.w[j]);
+        }
+      }
+      if (r >= 3 && r - 3 < groups) {
+        const Group& x = ring[(r - 3) % stages];
+        for (std::size_t j = 0, m = size_of(r - 3); j < m; ++j)
+          if (x.w[j] && (*x.w[j] >> 30) == list_tag) {
+            const std::uint32_t* list = lists_.data() + (*x.w[j] & index_mask);
+            for (std::uint32_t k = 1; k <= list[0]; ++k) detail::prefetch(objs + list[k]);
+          }
+      }
+      if (r >= 4) {
+        const Group& x = ring[(r - 4) % stages];
+        for (std::size_t j = 0, m = size_of(r - 4); j < m; ++j)
+          out[(r - 4) * G + j] = value(points[(r - 4) * G + j], x.w[j]);
+      }
+    }
+  }
+
+  /// The linear union (every object), which `operator()` equals.
+  T linear(const Vec3<T>& p) const noexcept { return union_.linear(p); }
+
+  /// The cell answering `p` (for tests and diagnostics).
+  UnionCacheCell cell(const Vec3<T>& p) const noexcept {
+    UnionCacheCell c;
+    const std::uint32_t* w = locate(p, &c.level);
+    if (!w || (*w >> 30) == fallback_tag) return c;
+    c.cached = true;
+    if ((*w >> 30) == single_tag) {
+      c.slots = {w, 1};
+    } else {
+      const std::uint32_t* list = lists_.data() + (*w & index_mask);
+      c.slots = {list + 1, list[0]};
+    }
+    return c;
+  }
+
+  Aabb<T> bounds() const noexcept { return union_.bounds(); }
+  std::size_t size() const noexcept { return union_.size(); }
+  const BvhUnion<S, K>& bvh_union() const noexcept { return union_; }
+  /// The region the cache covers (empty without a cache).
+  Aabb<T> region() const noexcept { return region_; }
+  const UnionCacheStats& stats() const noexcept { return stats_; }
+
+ private:
+  // A cell's 32-bit word: the top two bits say what it is, the other 30 an index.
+  static constexpr std::uint32_t single_tag = 0;   // the one candidate's slot
+  static constexpr std::uint32_t list_tag = 1;     // offset of [n, slot...] in lists_
+  static constexpr std::uint32_t split_tag = 2;    // first of 8 child words in nodes_, / 8
+  static constexpr std::uint32_t fallback_tag = 3; // the BVH answers
+  static constexpr std::uint32_t index_mask = (std::uint32_t(1) << 30) - 1;
+  static constexpr std::uint32_t word(std::uint32_t tag, std::size_t index) noexcept {
+    return (tag << 30) | std::uint32_t(index);
+  }
+
+  /// The word of the top cell holding `p` and `p`'s coordinates in it (in [0, 1)), or null
+  /// outside the region (or without a cache). The one rounding here is covered by the slack.
+  const std::uint32_t* top_word(const Vec3<T>& p, T (&u)[3]) const noexcept {
+    if (top_.empty()) return nullptr;
+    std::uint32_t i[3];
+    for (int a = 0; a < 3; ++a) {
+      u[a] = (p[a] - region_.lo[a]) * inv_[a];
+      if (!(u[a] >= T(0) && u[a] < T(dims_[a]))) return nullptr;
+      i[a] = std::uint32_t(u[a]);
+      u[a] -= T(i[a]);
+    }
+    return &top_[(std::size_t(i[2]) * dims_[1] + i[1]) * dims_[0] + i[0]];
+  }
+  /// The word of the octant of split cell `w` holding the point at `u`, and the point's
+  /// coordinates in it (exact: doubling, and subtracting 1 in [1, 2)).
+  const std::uint32_t* child_word(std::uint32_t w, T (&u)[3]) const noexcept {
+    std::uint32_t octant = 0;
+    for (int a = 0; a < 3; ++a) {
+      u[a] += u[a];
+      const std::uint32_t b = u[a] >= T(1);
+      u[a] -= T(b);
+      octant |= b << a;
+    }
+    return &nodes_[std::size_t(w & index_mask) * 8 + octant];
+  }
+  /// The word of the leaf cell holding `p`, or null outside the region (or without a cache).
+  const std::uint32_t* locate(const Vec3<T>& p, int* level = nullptr) const noexcept {
+    T u[3];
+    const std::uint32_t* w = top_word(p, u);
+    int l = 0;
+    for (; w && (*w >> 30) == split_tag; ++l) w = child_word(*w, u);
+    if (level) *level = l;
+    return w;
+  }
+  /// The union at `p` from its leaf word `w` (null: the BVH).
+  EBGEOM_FORCE_INLINE T value(const Vec3<T>& p, const std::uint32_t* w) const noexcept {
+    if (!w || (*w >> 30) == fallback_tag) return union_(p);
+    T best = std::numeric_limits<T>::infinity();
+    for (const S& s : union_.unbounded()) best = std::min(best, s(p));
+    const S* objs = union_.objects().data();
+    if ((*w >> 30) == single_tag) return std::min(best, objs[*w](p));
+    const std::uint32_t* list = lists_.data() + (*w & index_mask);
+    const std::uint32_t n = list[0];
+    for (std::uint32_t k = 1; k <= n; ++k) best = std::min(best, objs[list[k]](p));
+    return best;
+  }
+
+  /// A cell of the level being built: integer coordinates at that level, where its word goes
+  /// (top_ at level 0, nodes_ below) and which item of the level's `Lists` holds its candidates.
+  struct Cell {
+    std::uint32_t i[3];
+    std::size_t word_at, item;
+  };
+  /// Candidate lists written in parallel by chunks of `grain` consecutive items: item k's list
+  /// is buf[k / grain][first[k] ...], count[k] long (the same whatever the thread count).
+  struct Lists {
+    std::size_t grain = 1;
+    std::vector<std::vector<std::uint32_t>> buf;
+    std::vector<std::uint32_t> first, count;
+    void reset(std::size_t items, std::size_t g) {
+      grain = g;
+      buf.assign((items + g - 1) / g, {});
+      first.assign(items, 0);
+      count.assign(items, 0);
+    }
+    const std::uint32_t* of(std::size_t k) const noexcept {
+      return buf[k / grain].data() + first[k];
+    }
+  };
+  static constexpr std::size_t cells_per_task = 64;
+
+  static T box_distance2(const Aabb<T>& a, const Aabb<T>& b) noexcept {
+    T d2 = T(0);
+    for (int k = 0; k < 3; ++k) {
+      const T d = std::max(std::max(a.lo[k] - b.hi[k], b.lo[k] - a.hi[k]), T(0));
+      d2 += d * d;
+    }
+    return d2;
+  }
+
+  /// Geometry of the cells of one level: size, and half-diagonal rounded up.
+  struct Level {
+    Vec3<T> size;
+    T h;
+  };
+  Level level_geometry(int level) const noexcept {
+    Level g;
+    for (int a = 0; a < 3; ++a)
+      g.size[a] = region_.extent()[a] / T(std::uint64_t(dims_[a]) << level);
+    g.h = T(0.5) * norm(g.size) * (T(1) + T(8) * std::numeric_limits<T>::epsilon());
+    return g;
+  }
+  Aabb<T> cell_box(const std::uint32_t (&i)[3], const Level& g) const noexcept {
+    Aabb<T> box;
+    for (int a = 0; a < 3; ++a) {
+      box.lo[a] = region_.lo[a] + T(i[a]) * g.size[a];
+      box.hi[a] = region_.lo[a] + T(i[a] + 1) * g.size[a];
+    }
+    return box;
+  }
+
+  /// Appends to `out`, in leaf order, the objects that may be the minimum somewhere in `box`
+  /// (see the file comment): those of `parent` (m slots, ascending), or of the whole tree when
+  /// `parent` is null. `values` is scratch.
+  void candidates(const Aabb<T>& box, T h, const std::uint32_t* parent, std::uint32_t m,
+                  std::vector<T>& values, std::vector<std::uint32_t>& out) const {
+    constexpr T eps = std::numeric_limits<T>::epsilon();
+    const auto& objs = union_.objects();
+    const Vec3<T> c = box.center();
+    T u = std::numeric_limits<T>::infinity();
+    if (!parent) {
+      u = union_(c);
+    } else {
+      values.resize(m);
+      for (const S& s : union_.unbounded()) u = std::min(u, s(c));
+      for (std::uint32_t j = 0; j < m; ++j) u = std::min(u, values[j] = objs[parent[j]](c));
+    }
+    // Object i may be the minimum in the cell only if S_i(c) <= u + 2h and its box is within
+    // max(u + h, 0) of the cell, both with the slack; NaN values are kept.
+    const T limit = u + T(2) * h + slack_;
+    const T r = std::max(u + h, T(0)) + slack_;
+    const T r2 = r * r * (T(1) + T(8) * eps);
+    auto keep = [&](std::uint32_t s, T v) {
+      if (!(v > limit) && box_distance2(box, objs[s].bounds()) <= r2) out.push_back(s);
+    };
+    if (!parent) {
+      const std::size_t start = out.size();
+      bvh::for_each_leaf_if(
+          union_.tree(), [&](const auto& b) { return box_distance2(box, b) <= r2; },
+          [&](std::uint32_t first, std::uint32_t count) {
+            for (std::uint32_t s = first; s < first + count; ++s) keep(s, objs[s](c));
+            return true;
+          });
+      std::sort(out.begin() + std::ptrdiff_t(start), out.end());
+    } else {
+      for (std::uint32_t j = 0; j < m; ++j) keep(parent[j], values[j]);
+    }
+  }
+
+  void build(const Options& opt) {
+    const auto& objs = union_.objects();
+    if (objs.empty() || objs.size() > index_mask) return;
+    Aabb<T> region = opt.region;
+    if (region.is_empty()) {
+      region = union_.tree().box;
+      region = region.grown(opt.margin * max_component(region.extent()));
+    }
+    const Vec3<T> ext = region.extent();
+    if (!all_finite(region.lo) || !all_finite(region.hi) || !(min_component(ext) > T(0))) return;
+    const std::size_t cap_words = std::min<std::size_t>(opt.max_bytes, std::size_t(1) << 32) / 4;
+
+    // Top grid: near-cubic cells, about top_cells_per_object per object, within the cap.
+    const double volume = double(ext.x) * double(ext.y) * double(ext.z);
+    double side = std::cbrt(volume / std::max(1.0, opt.top_cells_per_object * double(objs.size())));
+    std::size_t ncells = 0;
+    for (;; side *= 1.25) {
+      for (int a = 0; a < 3; ++a)
+        dims_[a] = std::uint32_t(std::clamp(std::round(double(ext[a]) / side), 1.0, 1048576.0));
+      ncells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
+      if (ncells + 1 <= cap_words) break;
+      if (dims_[0] == 1 && dims_[1] == 1 && dims_[2] == 1) return; // max_bytes < 8
+    }
+    region_ = region;
+    // Cell coordinates at the deepest level must fit in 32 bits.
+    int max_depth = std::clamp(opt.max_depth, 0, 16);
+    for (int a = 0; a < 3; ++a)
+      while (max_depth > 0 && (std::uint64_t(dims_[a]) << max_depth) > (std::uint64_t(1) << 31))
+        --max_depth;
+    for (int a = 0; a < 3; ++a) inv_[a] = T(dims_[a]) / ext[a];
+    T scale = T(0);
+    for (const Aabb<T>& b : {region, union_.tree().box})
+      for (int a = 0; a < 3; ++a) scale = std::max({scale, std::abs(b.lo[a]), std::abs(b.hi[a])});
+    slack_ = T(1024) * std::numeric_limits<T>::epsilon() * scale;
+    top_.assign(ncells, 0);
+    lists_.assign(1, 0); // the shared empty list
+    stats_.top_cells = ncells;
+    for (int a = 0; a < 3; ++a) stats_.dims[a] = dims_[a];
+
+    // Level 0: every top cell's candidates from the BVH.
+    std::vector<Cell> cells(ncells), next;
+    for (std::uint32_t z = 0, k = 0; z < dims_[2]; ++z)
+      for (std::uint32_t y = 0; y < dims_[1]; ++y)
+        for (std::uint32_t x = 0; x < dims_[0]; ++x, ++k) cells[k] = {{x, y, z}, k, k};
+    Lists lists, kids;
+    lists.reset(ncells, cells_per_task);
+    {
+      const Level g = level_geometry(0);
+      parallel_for(
+          0, ncells, cells_per_task,
+          [&](std::size_t begin, std::size_t end) {
+            std::vector<T> values;
+            for (std::size_t k = begin; k < end; ++k) {
+              auto& buf = lists.buf[k / cells_per_task];
+              lists.first[k] = std::uint32_t(buf.size());
+              candidates(cell_box(cells[k].i, g), g.h, nullptr, 0, values, buf);
+              lists.count[k] = std::uint32_t(buf.size() - lists.first[k]);
+            }
+          },
+          opt.exec);
+    }
+    for (int level = 0; !cells.empty(); ++level) {
+      stats_.depth = level;
+      const std::size_t n = cells.size();
+      auto count = [&](std::size_t k) { return lists.count[cells[k].item]; };
+      // Cells with long lists try a split: their 8 children's lists (item 8k + o of `kids`)
+      // are computed, and the split is wanted when it cuts the mean list by min_split_gain.
+      std::vector<unsigned char> want(n, 0);
+      const bool can_split = level < max_depth;
+      kids.reset(can_split ? 8 * n : 0, 8 * cells_per_task);
+      if (can_split) {
+        const Level g = level_geometry(level + 1);
+        const double cell_volume = std::ldexp(1.0, -3 * level); // in top cells
+        parallel_for(
+            0, n, cells_per_task,
+            [&](std::size_t begin, std::size_t end) {
+              std::vector<T> values;
+              for (std::size_t k = begin; k < end; ++k) {
+                const std::uint32_t m = count(k);
+                if (m <= opt.max_candidates) continue;
+                auto& buf = kids.buf[k / cells_per_task];
+                std::size_t total = 0;
+                for (std::uint32_t o = 0; o < 8; ++o) {
+                  std::uint32_t i[3];
+                  for (int a = 0; a < 3; ++a) i[a] = 2 * cells[k].i[a] + ((o >> a) & 1);
+                  const std::size_t item = 8 * k + o;
+                  kids.first[item] = std::uint32_t(buf.size());
+                  candidates(cell_box(i, g), g.h, lists.of(cells[k].item), m, values, buf);
+                  kids.count[item] = std::uint32_t(buf.size() - kids.first[item]);
+                  total += kids.count[item];
+                }
+                want[k] = (double(m) - double(total) / 8) * cell_volume >= opt.min_split_gain;
+              }
+            },
+            opt.exec);
+      }
+      // What each cell becomes, within the cap. A leaf costs its list (m + 1 words; none for
+      // one candidate, which the word holds, or for none, which shares lists_[0]); a split costs
+      // 8 words and its children's lists instead. Longest lists are split first.
+      auto list_words = [](std::uint32_t m) -> std::size_t { return m >= 2 ? m + 1 : 0; };
+      std::size_t used = top_.size() + nodes_.size() + lists_.size();
+      for (std::size_t k = 0; k < n; ++k) used += list_words(count(k));
+      std::vector<std::uint32_t> order(n);
+      std::iota(order.begin(), order.end(), 0u);
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::uint32_t a, std::uint32_t b) { return count(a) > count(b); });
+      std::vector<std::uint32_t> fate(n, list_tag);
+      for (std::uint32_t k : order) {
+        if (used > cap_words && list_words(count(k)) > 0) { // only at the top level
+          used -= list_words(count(k));
+          fate[k] = fallback_tag;
+          stats_.capped = true;
+        } else if (want[k]) {
+          std::size_t extra = 8;
+          for (std::size_t o = 0; o < 8; ++o) extra += list_words(kids.count[8 * k + o]);
+          extra -= list_words(count(k));
+          if (used + extra <= cap_words) {
+            used += extra;
+            fate[k] = split_tag;
+          } else {
+            stats_.capped = true;
+          }
+        }
+      }
+      next.clear();
+      const double volume_share = std::ldexp(1.0, -3 * level) / double(ncells);
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::uint32_t m = count(k);
+        std::uint32_t w = word(fallback_tag, 0);
+        if (fate[k] == split_tag) {
+          const std::size_t g = nodes_.size() / 8;
+          w = word(split_tag, g);
+          nodes_.resize(nodes_.size() + 8, word(fallback_tag, 0));
+          for (std::uint32_t o = 0; o < 8; ++o) {
+            Cell child{{}, g * 8 + o, 8 * k + o};
+            for (int a = 0; a < 3; ++a) child.i[a] = 2 * cells[k].i[a] + ((o >> a) & 1);
+            next.push_back(child);
+          }
+          ++stats_.split_cells;
+        } else if (fate[k] == fallback_tag) {
+          ++stats_.fallback_cells;
+        } else {
+          const std::uint32_t* l = lists.of(cells[k].item);
+          if (m == 1) {
+            w = l[0];
+          } else {
+            // An empty list (an unbounded object wins everywhere in the cell) is lists_[0].
+            w = word(list_tag, m == 0 ? 0 : lists_.size());
+            if (m > 0) lists_.push_back(m);
+            lists_.insert(lists_.end(), l, l + m);
+          }
+          ++stats_.leaf_cells;
+          stats_.candidates += m;
+          stats_.longest_list = std::max<std::size_t>(stats_.longest_list, m);
+          stats_.mean_candidates += volume_share * m;
+          stats_.mean_level += volume_share * level;
+        }
+        (level == 0 ? top_[cells[k].word_at] : nodes_[cells[k].word_at]) = w;
+      }
+      std::swap(cells, next);
+      std::swap(lists, kids);
+    }
+    stats_.bytes = (top_.size() + nodes_.size() + lists_.size()) * sizeof(std::uint32_t);
+    top_.shrink_to_fit();
+    nodes_.shrink_to_fit();
+    lists_.shrink_to_fit();
+  }
+
+  BvhUnion<S, K> union_;
+  Aabb<T> region_;
+  Vec3<T> inv_{};              // top cells per unit length, per axis
+  std::uint32_t dims_[3] = {}; // top grid resolution
+  T slack_ = T(0);
+  std::vector<std::uint32_t> top_;   // one word per top cell, x fastest
+  std::vector<std::uint32_t> nodes_; // 8 words per split cell
+  std::vector<std::uint32_t> lists_; // [n, slot_1 .. slot_n] per leaf cell with n >= 2
+  UnionCacheStats stats_;
+};
+
+} // namespace ebgeom
