@@ -17,6 +17,7 @@
 // on the points (it reads every sphere), so its time from the first set is the reference for both.
 //
 // Usage: ebgeom_example_fast_union [M=40] [samples=1000] [repetitions=5] [fresh=200000]
+//                                  [top_cells_per_object=8] [min_split_gain=1]
 
 #include <algorithm>
 #include <chrono>
@@ -89,6 +90,9 @@ int main(int argc, char** argv) {
   const int samples = argc > 2 ? std::atoi(argv[2]) : 1000;
   const int reps = argc > 3 ? std::atoi(argv[3]) : 5;
   const int fresh = argc > 4 ? std::atoi(argv[4]) : 200000;
+  ebgeom::UnionCacheOptions<T> opt; // the defaults, but for the region (below)
+  if (argc > 5) opt.top_cells_per_object = std::atof(argv[5]);
+  if (argc > 6) opt.min_split_gain = std::atof(argv[6]);
   constexpr T radius = 0.02;
   const T delta = (2.0 - 2 * M * radius) / (M + 1);
   if (M < 1 || samples < 1 || reps < 1 || fresh < 0 || delta < 0) {
@@ -131,7 +135,6 @@ int main(int argc, char** argv) {
   const double bvh_build = seconds([&] { bvh = ebgeom::BvhUnion<Ball>(spheres); });
   // The cache covers the query domain [-1, 1]^3 (the default region, the spheres' box grown by
   // 1/16 of its side, would cover it too). Built from a copy of the BVH union.
-  ebgeom::UnionCacheOptions<T> opt;
   opt.region = Aabb<T>::of({-1, -1, -1}, {1, 1, 1});
   ebgeom::CachedUnion<Ball> cached;
   const double cache_build = seconds([&] { cached = ebgeom::CachedUnion<Ball>(bvh, opt); });

@@ -63,15 +63,15 @@ template <class T> struct UnionCacheOptions {
   /// extent on every axis, or no cache is built.
   Aabb<T> region = Aabb<T>::empty();
   T margin = T(0.0625);
-  /// Cells of the top grid per bounded object (near-cubic cells over the region).
-  double top_cells_per_object = 1.0;
-  /// A cell with more candidates than this is split into octants, up to `max_depth` levels below
-  /// the top grid and while `max_bytes` allows.
+  /// Cells of the top grid per bounded object (near-cubic cells over the region): 4 bytes each.
+  double top_cells_per_object = 8.0;
+  /// A cell with more candidates than this may be split into octants, up to `max_depth` levels
+  /// below the top grid and while `max_bytes` allows.
   std::uint32_t max_candidates = 4;
-  /// A split is kept only when it cuts the mean list length over the cell's 8 octants by at
-  /// least this much times 8^level (the cell's volume in top cells): splits go where they save
-  /// the most work per uniformly random query, and not forever around points where many objects
-  /// are equally near (an octree level costs about one candidate's evaluation).
+  /// A split is kept only when (the cut in the mean list length over its 8 octants) times (the
+  /// cell's volume over the region's volume per bounded object) is at least this: splits go
+  /// where they save the most work for uniformly random queries, and stop around points where
+  /// many objects are equally near (where no split shortens the lists).
   double min_split_gain = 1.0;
   int max_depth = 8; ///< clamped to [0, 16]
   /// Hard cap on the cache (top grid, split cells and lists; at most 4 GiB). Splits that might
@@ -144,63 +144,45 @@ template <class S, int K = 4> class CachedUnion {
   T operator()(const Vec3<T>& p) const noexcept { return value(p, locate(p)); }
 
   /// `out[i] = (*this)(points[i])` for a batch (the member `evaluate()` and the grid samplers
-  /// use). Same values; faster when the cache is larger than the CPU caches, because it locates
-  /// the cells of `batch` points at a time and prefetches their words, lists and objects before
-  /// evaluating any, so the memory latencies overlap. Precondition: `out.size() >= points.size()`.
+  /// use). Same values; faster when the cache is larger than the CPU caches: it takes 32 points
+  /// at a time through each step (top cell, each octree level, list, objects), requesting what
+  /// the next step reads for all 32 before reading any, so their memory latencies overlap (a
+  /// pipeline across groups, overlapping evaluation with the next group's requests, measured no
+  /// faster). Precondition: `out.size() >= points.size()`.
   void eval(Span<const Vec3<T>> points, Span<T> out) const noexcept {
-    // A software pipeline over groups of G points: in each round group g computes its top cells
-    // and requests their words, group g - 1 goes down one octree level, group g - 2 requests its
-    // lists (or single objects), group g - 3 requests the objects of its lists and group g - 4
-    // is evaluated; so four groups' memory requests are in flight while one group computes.
-    constexpr std::size_t G = 16, stages = 5;
-    struct Group {
-      const std::uint32_t* w[G];
-      T u[G][3];
-    } ring[stages];
+    constexpr std::size_t batch = 32;
+    const std::uint32_t* w[batch];
+    T u[batch][3];
     const S* objs = union_.objects().data();
-    const std::size_t n = points.size(), groups = (n + G - 1) / G;
-    auto size_of = [&](std::size_t g) { return std::min(G, n - g * G); };
-    for (std::size_t r = 0; r < groups + stages - 1; ++r) {
-      if (r < groups) {
-        Group& x = ring[r % stages];
-        for (std::size_t j = 0, m = size_of(r); j < m; ++j) {
-          x.w[j] = top_word(points[r * G + j], x.u[j]);
-          if (x.w[j]) detail::prefetch(x.w[j]);
-        }
+    for (std::size_t b = 0; b < points.size(); b += batch) {
+      const std::size_t n = std::min(batch, points.size() - b);
+      for (std::size_t j = 0; j < n; ++j) {
+        w[j] = top_word(points[b + j], u[j]);
+        if (w[j]) detail::prefetch(w[j]);
       }
-      if (r >= 1 && r - 1 < groups) {
-        Group& x = ring[(r - 1) % stages];
-        for (std::size_t j = 0, m = size_of(r - 1); j < m; ++j)
-          if (x.w[j] && (*x.w[j] >> 30) == split_tag) {
-            x.w[j] = child_word(*x.w[j], x.u[j]);
-            detail::prefetch(x.w[j]);
+      for (bool again = true; again;) { // one octree level per pass
+        again = false;
+        for (std::size_t j = 0; j < n; ++j)
+          if (w[j] && (*w[j] >> 30) == split_tag) {
+            w[j] = child_word(*w[j], u[j]);
+            detail::prefetch(w[j]);
+            again = true;
           }
       }
-      if (r >= 2 && r - 2 < groups) {
-        Group& x = ring[(r - 2) % stages];
-        for (std::size_t j = 0, m = size_of(r - 2); j < m; ++j) {
-          if (!x.w[j]) continue;
-          while ((*x.w[j] >> 30) == split_tag) x.w[j] = child_word(*x.w[j], x.u[j]);
-          const std::uint32_t t = *x.w[j] >> 30;
-          if (t == list_tag)
-            detail::prefetch(lists_.data() + (*x.w[j] & index_mask));
-          else if (t == single_tag)
-            detail::prefetch(objs + *x.w[j]);
+      for (std::size_t j = 0; j < n; ++j) {
+        if (!w[j]) continue;
+        const std::uint32_t t = *w[j] >> 30;
+        if (t == list_tag)
+          detail::prefetch(lists_.data() + (*w[j] & index_mask));
+        else if (t == single_tag)
+          detail::prefetch(objs + *w[j]);
+      }
+      for (std::size_t j = 0; j < n; ++j)
+        if (w[j] && (*w[j] >> 30) == list_tag) {
+          const std::uint32_t* list = lists_.data() + (*w[j] & index_mask);
+          for (std::uint32_t k = 1; k <= list[0]; ++k) detail::prefetch(objs + list[k]);
         }
-      }
-      if (r >= 3 && r - 3 < groups) {
-        const Group& x = ring[(r - 3) % stages];
-        for (std::size_t j = 0, m = size_of(r - 3); j < m; ++j)
-          if (x.w[j] && (*x.w[j] >> 30) == list_tag) {
-            const std::uint32_t* list = lists_.data() + (*x.w[j] & index_mask);
-            for (std::uint32_t k = 1; k <= list[0]; ++k) detail::prefetch(objs + list[k]);
-          }
-      }
-      if (r >= 4) {
-        const Group& x = ring[(r - 4) % stages];
-        for (std::size_t j = 0, m = size_of(r - 4); j < m; ++j)
-          out[(r - 4) * G + j] = value(points[(r - 4) * G + j], x.w[j]);
-      }
+      for (std::size_t j = 0; j < n; ++j) out[b + j] = value(points[b + j], w[j]);
     }
   }
 
@@ -451,14 +433,18 @@ template <class S, int K = 4> class CachedUnion {
       kids.reset(can_split ? 8 * n : 0, 8 * cells_per_task);
       if (can_split) {
         const Level g = level_geometry(level + 1);
-        const double cell_volume = std::ldexp(1.0, -3 * level); // in top cells
+        // The cell's volume over the region's volume per bounded object.
+        const double cell_volume = std::ldexp(double(objs.size()) / double(ncells), -3 * level);
         parallel_for(
             0, n, cells_per_task,
             [&](std::size_t begin, std::size_t end) {
               std::vector<T> values;
               for (std::size_t k = begin; k < end; ++k) {
                 const std::uint32_t m = count(k);
-                if (m <= opt.max_candidates) continue;
+                // A split cannot gain more than the whole list: skip it when even that is too
+                // little.
+                if (m <= opt.max_candidates || double(m) * cell_volume < opt.min_split_gain)
+                  continue;
                 auto& buf = kids.buf[k / cells_per_task];
                 std::size_t total = 0;
                 for (std::uint32_t o = 0; o < 8; ++o) {
