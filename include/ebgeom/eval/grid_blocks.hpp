@@ -68,7 +68,8 @@ template <class T> struct GridFrame {
     for (int a = 0; a < 3; ++a) tiles[a] = (n[a] + grid_tile - 1) / grid_tile;
   }
   Vec3<T> point(std::size_t i, std::size_t j, std::size_t k) const noexcept {
-    return {o.x + T(i) * h.x, o.y + T(j) * h.y, o.z + T(k) * h.z};
+    return {grid_coordinate(o.x, i, h.x), grid_coordinate(o.y, j, h.y),
+            grid_coordinate(o.z, k, h.z)};
   }
   /// Samples [lo, hi) of tiles [a, b) (clipped to the grid).
   void sample_range(const std::array<std::size_t, 3>& a, const std::array<std::size_t, 3>& b,
