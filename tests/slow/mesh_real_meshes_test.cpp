@@ -1,10 +1,14 @@
 // Mesh structures on the real meshes of ../shared/meshes (skipped when absent): every file
 // validates without crashing and builds both meshes; on the meshes whose signed distance is well
 // defined, the DCEL and triangle-mesh oracles agree and their signs match a winding-number oracle.
+// On every mesh file there, raw and welded, in float and double, the triangle mesh's edge links
+// give back the per-side edge pseudonormal table bit for bit.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "ebgeom/geom/solid_angle.hpp"
@@ -14,6 +18,7 @@
 #include "ebgeom/mesh/weld.hpp"
 #include "ebgeom/sdf/brute_force_dcel_sdf.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
+#include "edge_normal_reference.hpp"
 #include "test_support.hpp"
 
 using namespace ebgeom;
@@ -79,3 +84,29 @@ INSTANTIATE_TEST_SUITE_P(Shared, RealMesh,
                                            "stanford-bunny.obj", "igea.ply"));
 
 } // namespace
+
+template <class T> class RealMeshEdgeLinks : public ::testing::Test {};
+TYPED_TEST_SUITE(RealMeshEdgeLinks, test::FloatTypes);
+
+TYPED_TEST(RealMeshEdgeLinks, EqualTheEdgeNormalTableBitForBit) {
+  using T = TypeParam;
+  namespace fs = std::filesystem;
+  const fs::path dir(EBGEOM_TEST_MESH_DIR);
+  if (!fs::is_directory(dir)) GTEST_SKIP() << "shared meshes " << dir << " are absent";
+  std::vector<fs::path> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    const std::string ext = e.path().extension().string();
+    if (e.is_regular_file() && (ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".vtk"))
+      files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  std::size_t sides = 0;
+  for (const fs::path& f : files) {
+    SCOPED_TRACE(f.string());
+    auto soup = io::read_mesh<T>(f.string());
+    ASSERT_TRUE(soup.has_value()) << soup.error().what();
+    sides += test::expect_edge_normals_match(*soup);
+    sides += test::expect_edge_normals_match(weld(*soup).value().soup);
+  }
+  std::printf("%zu files, %zu triangle sides compared\n", files.size(), sides);
+}

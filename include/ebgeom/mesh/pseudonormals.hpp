@@ -73,6 +73,9 @@ template <class T> struct EdgeNormalTable {
 
 /// Builds the edge pseudonormal table of `soup` by sorting its face sides. O(n log n) in the
 /// number of corners. Precondition: `check_soup(soup)` passed and `face_normals` per face.
+/// `TriangleMesh::edge_normal` recomputes the entries of one and two face sides with the same
+/// operations (normalise(zero + n_f [+ n_g]), faces in order) instead of storing them: change
+/// both together (tests/unit/mesh/edge_links_test.cpp compares them bit for bit).
 template <class T>
 EdgeNormalTable<T> edge_pseudonormals(const PolygonSoup<T>& soup,
                                       const std::vector<Vec3<T>>& face_normals) {

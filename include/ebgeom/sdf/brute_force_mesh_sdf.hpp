@@ -28,27 +28,29 @@ template <class T> struct MeshClosestPoint {
   TriangleFeature feature = TriangleFeature::face;
 };
 
+/// Pseudonormal of `feature` of triangle `t`: the face normal, an edge pseudonormal (recomputed,
+/// `TriangleMesh::edge_normal`) or a vertex pseudonormal. Precondition: t <
+/// mesh.triangle_count(). O(1).
+template <class T>
+EBGEOM_FORCE_INLINE Vec3<T> feature_pseudonormal(const TriangleMesh<T>& mesh, std::size_t t,
+                                                 TriangleFeature feature) noexcept {
+  if (is_vertex(feature)) return mesh.vertex_normals[mesh.triangles[t][vertex_index(feature)]];
+  if (is_edge(feature)) return mesh.edge_normal(t, edge_index(feature));
+  return mesh.face_normals[t];
+}
+
 /// Signed distance from `p` to triangle `t` of `mesh`, with the pseudonormal of the closest
-/// feature deciding the sign. Precondition: t < mesh.triangle_count(). O(1), deterministic.
+/// feature deciding the sign (the same operations as `BruteForceMeshSdf` and `MeshSdf`, so the
+/// same bits). Precondition: t < mesh.triangle_count(). O(1), deterministic.
 template <class T>
 EBGEOM_FORCE_INLINE TriangleSignedDistance<T>
 triangle_signed_distance(const TriangleMesh<T>& mesh, std::size_t t, const Vec3<T>& p) noexcept {
   const auto& tri = mesh.triangles[t];
-  const Vec3<T> vn[3] = {mesh.vertex_normals[tri[0]], mesh.vertex_normals[tri[1]],
-                         mesh.vertex_normals[tri[2]]};
-  return signed_distance_triangle(p, mesh.vertices[tri[0]], mesh.vertices[tri[1]],
-                                  mesh.vertices[tri[2]], mesh.face_normals[t],
-                                  mesh.edge_normals[t].data(), vn);
-}
-
-/// Pseudonormal of `feature` of triangle `t`: the face normal, an edge pseudonormal or a vertex
-/// pseudonormal. Precondition: t < mesh.triangle_count().
-template <class T>
-EBGEOM_FORCE_INLINE const Vec3<T>& feature_pseudonormal(const TriangleMesh<T>& mesh, std::size_t t,
-                                                        TriangleFeature feature) noexcept {
-  return is_vertex(feature) ? mesh.vertex_normals[mesh.triangles[t][vertex_index(feature)]]
-                            : (is_edge(feature) ? mesh.edge_normals[t][edge_index(feature)]
-                                                : mesh.face_normals[t]);
+  const TriangleClosestPoint<T> cp = closest_point_triangle(
+      p, mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]);
+  return {
+      signed_distance_from(p, cp.point, cp.distance2, feature_pseudonormal(mesh, t, cp.feature)),
+      cp.point, cp.feature};
 }
 
 /// Exact signed distance to a closed, consistently oriented, manifold triangle mesh (check with

@@ -209,7 +209,7 @@ boxes_distance2(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_REST
 /// - `K`: BVH arity (2..16; 4 is the default, 8 suits AVX-512), `W`: triangles per leaf block.
 /// - Sign: the pseudonormal of the closest feature (Bærentzen & Aanæs 2005): exact for closed,
 ///   consistently oriented, manifold meshes (check with `validate`).
-/// - Memory: the `TriangleMesh` (~76 B/triangle in float) + blocks (36 B per lane, leaves padded
+/// - Memory: the `TriangleMesh` (~48 B/triangle in float) + blocks (36 B per lane, leaves padded
 ///   to whole blocks) + 4 B per lane of triangle ids + nodes; `memory_bytes()` reports it.
 /// - Queries are O(log n) on average, allocation-free, and thread-safe (immutable object).
 template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
@@ -364,19 +364,26 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     if (nt == 0) return {ErrorCode::empty, "mesh SDF: the mesh has no triangles"};
     if (nt >= std::size_t(std::numeric_limits<std::uint32_t>::max()) / std::size_t(W))
       return {ErrorCode::size_mismatch, "mesh SDF: too many triangles"};
-    if (m.face_normals.size() != nt || m.edge_normals.size() != nt ||
-        m.vertex_normals.size() != m.vertices.size())
+    if (m.face_normals.size() != nt || m.edge_links.size() != nt ||
+        m.vertex_normals.size() != m.vertices.size() ||
+        (!m.source_faces.empty() && m.source_faces.size() != nt))
       return {ErrorCode::size_mismatch, "mesh SDF: normal arrays do not match the mesh"};
     for (std::size_t v = 0; v < m.vertices.size(); ++v)
       if (!all_finite(m.vertices[v]))
         return {ErrorCode::non_finite,
                 "mesh SDF: vertex " + std::to_string(v) + " has a NaN or infinite coordinate"};
-    for (std::size_t t = 0; t < nt; ++t)
+    for (std::size_t t = 0; t < nt; ++t) {
       for (Index i : m.triangles[t])
         if (i >= m.vertices.size())
           return {ErrorCode::bad_index, "mesh SDF: triangle " + std::to_string(t) +
                                             " uses vertex " + std::to_string(i) +
                                             " >= " + std::to_string(m.vertices.size())};
+      for (Index link : m.edge_links[t])
+        if (!m.valid_link(link))
+          return {ErrorCode::bad_index, "mesh SDF: triangle " + std::to_string(t) +
+                                            " has edge link " + std::to_string(link) +
+                                            ", neither a triangle nor a valid code"};
+    }
     return {};
   }
 

@@ -153,7 +153,7 @@ TYPED_TEST(DcelSdfTest, NonStarPolygonIsEarClippedInTheTriangleMesh) {
   for (std::size_t t = 0; t < m.triangle_count(); ++t) {
     const Vec3<T> c = cross(m.corner(t, 1) - m.corner(t, 0), m.corner(t, 2) - m.corner(t, 0));
     EXPECT_GE(dot(c, m.face_normals[t]), T(0)); // every triangle keeps the polygon's orientation
-    if (m.source_face[t] == 0) bottom_area += double(norm(c)) / 2;
+    if (m.source_face(t) == 0) bottom_area += double(norm(c)) / 2;
   }
   EXPECT_NEAR(bottom_area, 3.0, 1e-5);
   const auto dcel = BruteForceDcelSdf<T>::build(soup).value();

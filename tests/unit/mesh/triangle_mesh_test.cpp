@@ -19,7 +19,7 @@ TYPED_TEST(TriangleMeshTest, CubeQuadsAreFannedWithPseudonormals) {
   ASSERT_EQ(m.vertex_count(), 8u);
   const T tol = test::tol<T>();
   for (std::size_t t = 0; t < 12; ++t) {
-    EXPECT_EQ(m.source_face[t], t / 2);
+    EXPECT_EQ(m.source_face(t), t / 2);
     const Vec3<T> n = m.face_normals[t];
     EXPECT_NEAR(norm(n), T(1), tol);
     // the face normal is an axis and agrees with the triangle's own winding
@@ -27,7 +27,7 @@ TYPED_TEST(TriangleMeshTest, CubeQuadsAreFannedWithPseudonormals) {
     EXPECT_NEAR(max_component(abs(n)), T(1), tol);
     for (int k = 0; k < 3; ++k) {
       const Vec3<T> a = m.corner(t, k), b = m.corner(t, (k + 1) % 3);
-      const Vec3<T> en = m.edge_normals[t][k];
+      const Vec3<T> en = m.edge_normal(t, k);
       EXPECT_NEAR(norm(en), T(1), tol);
       const bool diagonal = norm2(b - a) > T(4.5); // length 2*sqrt(2) vs 2
       if (diagonal) {
@@ -41,7 +41,10 @@ TYPED_TEST(TriangleMeshTest, CubeQuadsAreFannedWithPseudonormals) {
   }
   for (std::size_t v = 0; v < 8; ++v)
     EXPECT_NEAR(norm(m.vertex_normals[v] - normalized(m.vertices[v])), T(0), tol);
-  EXPECT_EQ(m.memory_bytes(), 8 * 2 * sizeof(Vec3<T>) + 12 * (12 + 4 + 4 * sizeof(Vec3<T>)));
+  // quads: source faces stored; a closed manifold: no overflow normals
+  EXPECT_EQ(m.source_faces.size(), 12u);
+  EXPECT_TRUE(m.edge_overflow.empty());
+  EXPECT_EQ(m.memory_bytes(), 8 * 2 * sizeof(Vec3<T>) + 12 * (12 + 4 + 12 + sizeof(Vec3<T>)));
 }
 
 TYPED_TEST(TriangleMeshTest, VertexPseudonormalIsAngleWeighted) {
