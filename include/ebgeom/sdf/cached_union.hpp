@@ -2,32 +2,34 @@
 /// \file
 /// `CachedUnion<S, K>`: a `BvhUnion` plus an exact *candidate cache*, for unions queried many
 /// times in a known region. The region is covered by a grid of cells, split into octants where
-/// needed; each leaf cell stores the few objects that can be the minimum anywhere in it. A query
-/// finds its cell in O(1) (plus one step per octree level) and takes the minimum over that list,
-/// in the same order as `linear()`, so the result equals `linear()` bit for bit.
+/// that pays; each leaf cell stores the few objects that can be the minimum anywhere in it. A
+/// query finds its cell in O(1) (plus one step per octree level) and takes the minimum over that
+/// list, in the same order as `linear()`, so the result equals `linear()` bit for bit.
 ///
 /// Why a list can be trusted. Let C be a cell with centre c and half-diagonal h, and U = min_j
 /// S_j(c) the union at its centre. For 1-Lipschitz objects (every exact or bound SDF) the union is
 /// at most U + h anywhere in C, while object i is at least S_i(c) - h there and, when it is
 /// prunable (`prunable_in_union`), at least dist(C, box_i) outside its box. So i can be the
-/// minimum somewhere in C only if S_i(c) <= U + 2h and dist(C, box_i) <= max(U + h, 0). Both tests
-/// carry an absolute slack of 1024 ulps of the region's coordinates, which covers the rounding
-/// of every evaluation and of locating a point's cell, so no object that rounds to the minimum is
-/// ever left out: ties, signed zeros included, are resolved as in `linear()`.
+/// minimum somewhere in C only if S_i(c) <= U + 2h and dist(C, box_i) <= max(U + h, 0). A query
+/// at p, at distance d from c, narrows this to S_i(c) <= U + 2d, using the gap S_i(c) - U stored
+/// (rounded down, one byte) with each candidate: about half the list for random points. Every
+/// test carries an absolute slack of 1024 ulps of the region's coordinates, which covers the
+/// rounding of every evaluation and of locating a point's cell, so no object that rounds to the
+/// minimum is ever left out: ties, signed zeros included, are resolved as in `linear()`.
 ///
-/// Costs. Memory: 4 bytes per top cell, 32 bytes per split cell and 4 (n + 1) bytes per list of
-/// n >= 2 candidates (a single candidate is stored in the cell itself); `UnionCacheOptions` caps
-/// the total. Build: one BVH union query and one box-range search per top cell, then one
-/// evaluation of each parent candidate per child cell; parallel (`parallel_for`), and the result
-/// does not depend on the thread count. Queries outside the region, or in cells the memory cap
-/// left without a list, use the BVH. Objects with unbounded boxes are evaluated by every query.
-/// The cache is built only when `cacheable` (prunable and not `implicit`); otherwise every query
-/// uses the BVH.
-
+/// Costs. Memory: 4 bytes per top cell, 32 bytes per split cell and 4 + 5n bytes (rounded up to
+/// 4) per list of n >= 2 candidates (a single candidate is stored in the cell itself);
+/// `UnionCacheOptions::max_bytes` caps the total. Build: one BVH union query and one box-range
+/// search per top cell, then one evaluation of each parent candidate per child cell tried;
+/// parallel (`parallel_for`), and the result does not depend on the thread count. Queries outside
+/// the region, or in cells the memory cap left without a list, use the BVH. Objects with
+/// unbounded boxes are evaluated by every query. The cache is built only when `cacheable`
+/// (prunable and not `implicit`); otherwise every query uses the BVH.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -107,6 +109,7 @@ struct UnionCacheCell {
   bool cached = false;
   Span<const std::uint32_t> slots;
   int level = 0;
+  std::size_t evaluated = 0; ///< candidates a query at this very point evaluates (see `eval`)
 };
 
 /// `BvhUnion<S, K>` with an exact candidate cache (see the file comment). Same values as
@@ -151,38 +154,38 @@ template <class S, int K = 4> class CachedUnion {
   /// faster). Precondition: `out.size() >= points.size()`.
   void eval(Span<const Vec3<T>> points, Span<T> out) const noexcept {
     constexpr std::size_t batch = 32;
-    const std::uint32_t* w[batch];
-    T u[batch][3];
+    Spot at[batch];
     const S* objs = union_.objects().data();
     for (std::size_t b = 0; b < points.size(); b += batch) {
       const std::size_t n = std::min(batch, points.size() - b);
       for (std::size_t j = 0; j < n; ++j) {
-        w[j] = top_word(points[b + j], u[j]);
-        if (w[j]) detail::prefetch(w[j]);
+        at[j] = Spot{};
+        at[j].w = top_word(points[b + j], at[j].u);
+        if (at[j].w) detail::prefetch(at[j].w);
       }
       for (bool again = true; again;) { // one octree level per pass
         again = false;
         for (std::size_t j = 0; j < n; ++j)
-          if (w[j] && (*w[j] >> 30) == split_tag) {
-            w[j] = child_word(*w[j], u[j]);
-            detail::prefetch(w[j]);
+          if (at[j].w && (*at[j].w >> 30) == split_tag) {
+            at[j].w = child_word(*at[j].w, at[j].u);
+            ++at[j].level;
+            detail::prefetch(at[j].w);
             again = true;
           }
       }
       for (std::size_t j = 0; j < n; ++j) {
-        if (!w[j]) continue;
-        const std::uint32_t t = *w[j] >> 30;
-        if (t == list_tag)
-          detail::prefetch(lists_.data() + (*w[j] & index_mask));
-        else if (t == single_tag)
-          detail::prefetch(objs + *w[j]);
+        if (!at[j].w) continue;
+        const std::uint32_t t = *at[j].w >> 30;
+        if (t == list_tag) { // a list with its gaps may straddle two cache lines
+          detail::prefetch(lists_.data() + (*at[j].w & index_mask));
+          detail::prefetch(lists_.data() + (*at[j].w & index_mask) + 12);
+        } else if (t == single_tag)
+          detail::prefetch(objs + *at[j].w);
       }
       for (std::size_t j = 0; j < n; ++j)
-        if (w[j] && (*w[j] >> 30) == list_tag) {
-          const std::uint32_t* list = lists_.data() + (*w[j] & index_mask);
-          for (std::uint32_t k = 1; k <= list[0]; ++k) detail::prefetch(objs + list[k]);
-        }
-      for (std::size_t j = 0; j < n; ++j) out[b + j] = value(points[b + j], w[j]);
+        if (at[j].w && (*at[j].w >> 30) == list_tag)
+          for_each_candidate(at[j], [&](std::uint32_t slot) { detail::prefetch(objs + slot); });
+      for (std::size_t j = 0; j < n; ++j) out[b + j] = value(points[b + j], at[j]);
     }
   }
 
@@ -192,14 +195,18 @@ template <class S, int K = 4> class CachedUnion {
   /// The cell answering `p` (for tests and diagnostics).
   UnionCacheCell cell(const Vec3<T>& p) const noexcept {
     UnionCacheCell c;
-    const std::uint32_t* w = locate(p, &c.level);
+    const Spot at = locate(p);
+    c.level = at.level;
+    const std::uint32_t* w = at.w;
     if (!w || (*w >> 30) == fallback_tag) return c;
     c.cached = true;
     if ((*w >> 30) == single_tag) {
       c.slots = {w, 1};
+      c.evaluated = 1;
     } else {
       const std::uint32_t* list = lists_.data() + (*w & index_mask);
       c.slots = {list + 1, list[0]};
+      for_each_candidate(at, [&](std::uint32_t) { ++c.evaluated; });
     }
     return c;
   }
@@ -214,7 +221,7 @@ template <class S, int K = 4> class CachedUnion {
  private:
   // A cell's 32-bit word: the top two bits say what it is, the other 30 an index.
   static constexpr std::uint32_t single_tag = 0;   // the one candidate's slot
-  static constexpr std::uint32_t list_tag = 1;     // offset of [n, slot...] in lists_
+  static constexpr std::uint32_t list_tag = 1;     // offset of [n, slots, gaps] in lists_
   static constexpr std::uint32_t split_tag = 2;    // first of 8 child words in nodes_, / 8
   static constexpr std::uint32_t fallback_tag = 3; // the BVH answers
   static constexpr std::uint32_t index_mask = (std::uint32_t(1) << 30) - 1;
@@ -247,25 +254,66 @@ template <class S, int K = 4> class CachedUnion {
     }
     return &nodes_[std::size_t(w & index_mask) * 8 + octant];
   }
-  /// The word of the leaf cell holding `p`, or null outside the region (or without a cache).
-  const std::uint32_t* locate(const Vec3<T>& p, int* level = nullptr) const noexcept {
-    T u[3];
-    const std::uint32_t* w = top_word(p, u);
-    int l = 0;
-    for (; w && (*w >> 30) == split_tag; ++l) w = child_word(*w, u);
-    if (level) *level = l;
-    return w;
+  /// Where a point is: the word of its leaf cell (null outside the region or without a cache),
+  /// its coordinates in that cell (in [0, 1)) and the cell's level.
+  struct Spot {
+    const std::uint32_t* w = nullptr;
+    T u[3] = {};
+    int level = 0;
+  };
+  Spot locate(const Vec3<T>& p) const noexcept {
+    Spot at;
+    at.w = top_word(p, at.u);
+    for (; at.w && (*at.w >> 30) == split_tag; ++at.level) at.w = child_word(*at.w, at.u);
+    return at;
   }
-  /// The union at `p` from its leaf word `w` (null: the BVH).
-  EBGEOM_FORCE_INLINE T value(const Vec3<T>& p, const std::uint32_t* w) const noexcept {
+
+  /// Calls `fn(slot)` for the candidates of list cell `at` that can be the minimum at the point
+  /// itself, in list (leaf) order. A list stores with each candidate its gap g = S_i(c) - U
+  /// above the union at the cell's centre, rounded down to a multiple of the level's `gap_unit_`
+  /// (one byte). The union at p is at most U + d and S_i(p) at least S_i(c) - d, with d = |p - c|,
+  /// so a candidate with g > 2d (plus the slack) cannot be the minimum at p and is skipped: about
+  /// half of them for uniformly random points. What is skipped is strictly larger than the
+  /// minimum, so the result and its tie-breaking are those of the whole list.
+  template <class Fn> EBGEOM_FORCE_INLINE void for_each_candidate(const Spot& at, Fn&& fn) const {
+    const std::uint32_t* list = lists_.data() + (*at.w & index_mask);
+    const std::uint32_t n = list[0];
+    const auto* gaps = reinterpret_cast<const unsigned char*>(list + 1 + n);
+    T d2 = T(0);
+    for (int a = 0; a < 3; ++a) {
+      const T x = (at.u[a] - T(0.5)) * level_size_[at.level][a];
+      d2 += x * x;
+    }
+    // Kept when gap <= 2d + slack, in gap bytes, rounded towards keeping. (Comparing squares
+    // instead, without this square root, measured slower.)
+    constexpr T up = T(1) + T(8) * std::numeric_limits<T>::epsilon();
+    const T limit = (T(2) * std::sqrt(d2) * up + slack_) * gap_per_unit_[at.level] * up;
+    auto keep = [&](std::uint32_t k) { return !(T(gaps[k]) > limit); };
+    // Compacted without branches first: a branch per candidate would mispredict half the time.
+    constexpr std::uint32_t most = 64;
+    if (n > most) {
+      for (std::uint32_t k = 0; k < n; ++k)
+        if (keep(k)) fn(list[1 + k]);
+      return;
+    }
+    std::uint32_t kept[most];
+    std::uint32_t m = 0;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      kept[m] = list[1 + k];
+      m += keep(k);
+    }
+    for (std::uint32_t k = 0; k < m; ++k) fn(kept[k]);
+  }
+
+  /// The union at the point at `at` (no leaf word: the BVH).
+  EBGEOM_FORCE_INLINE T value(const Vec3<T>& p, const Spot& at) const noexcept {
+    const std::uint32_t* w = at.w;
     if (!w || (*w >> 30) == fallback_tag) return union_(p);
     T best = std::numeric_limits<T>::infinity();
     for (const S& s : union_.unbounded()) best = std::min(best, s(p));
     const S* objs = union_.objects().data();
     if ((*w >> 30) == single_tag) return std::min(best, objs[*w](p));
-    const std::uint32_t* list = lists_.data() + (*w & index_mask);
-    const std::uint32_t n = list[0];
-    for (std::uint32_t k = 1; k <= n; ++k) best = std::min(best, objs[list[k]](p));
+    for_each_candidate(at, [&](std::uint32_t slot) { best = std::min(best, objs[slot](p)); });
     return best;
   }
 
@@ -275,20 +323,26 @@ template <class S, int K = 4> class CachedUnion {
     std::uint32_t i[3];
     std::size_t word_at, item;
   };
-  /// Candidate lists written in parallel by chunks of `grain` consecutive items: item k's list
-  /// is buf[k / grain][first[k] ...], count[k] long (the same whatever the thread count).
+  /// Candidate lists written in parallel by chunks of `grain` consecutive items: item k's slots
+  /// are buf[k / grain][first[k] ...] and their gap bytes gaps[k / grain][first[k] ...], count[k]
+  /// long (the same whatever the thread count).
   struct Lists {
     std::size_t grain = 1;
     std::vector<std::vector<std::uint32_t>> buf;
+    std::vector<std::vector<unsigned char>> gaps;
     std::vector<std::uint32_t> first, count;
     void reset(std::size_t items, std::size_t g) {
       grain = g;
       buf.assign((items + g - 1) / g, {});
+      gaps.assign(buf.size(), {});
       first.assign(items, 0);
       count.assign(items, 0);
     }
     const std::uint32_t* of(std::size_t k) const noexcept {
       return buf[k / grain].data() + first[k];
+    }
+    const unsigned char* gaps_of(std::size_t k) const noexcept {
+      return gaps[k / grain].data() + first[k];
     }
   };
   static constexpr std::size_t cells_per_task = 64;
@@ -302,32 +356,23 @@ template <class S, int K = 4> class CachedUnion {
     return d2;
   }
 
-  /// Geometry of the cells of one level: size, and half-diagonal rounded up.
-  struct Level {
-    Vec3<T> size;
-    T h;
-  };
-  Level level_geometry(int level) const noexcept {
-    Level g;
-    for (int a = 0; a < 3; ++a)
-      g.size[a] = region_.extent()[a] / T(std::uint64_t(dims_[a]) << level);
-    g.h = T(0.5) * norm(g.size) * (T(1) + T(8) * std::numeric_limits<T>::epsilon());
-    return g;
-  }
-  Aabb<T> cell_box(const std::uint32_t (&i)[3], const Level& g) const noexcept {
+  Aabb<T> cell_box(const std::uint32_t (&i)[3], int level) const noexcept {
     Aabb<T> box;
     for (int a = 0; a < 3; ++a) {
-      box.lo[a] = region_.lo[a] + T(i[a]) * g.size[a];
-      box.hi[a] = region_.lo[a] + T(i[a] + 1) * g.size[a];
+      box.lo[a] = region_.lo[a] + T(i[a]) * level_size_[level][a];
+      box.hi[a] = region_.lo[a] + T(i[a] + 1) * level_size_[level][a];
     }
     return box;
   }
 
   /// Appends to `out`, in leaf order, the objects that may be the minimum somewhere in `box`
   /// (see the file comment): those of `parent` (m slots, ascending), or of the whole tree when
-  /// `parent` is null. `values` is scratch.
-  void candidates(const Aabb<T>& box, T h, const std::uint32_t* parent, std::uint32_t m,
-                  std::vector<T>& values, std::vector<std::uint32_t>& out) const {
+  /// `parent` is null; and to `gaps` their gap bytes at `level` (see `for_each_candidate`).
+  /// `values` is scratch.
+  void candidates(const Aabb<T>& box, int level, const std::uint32_t* parent, std::uint32_t m,
+                  std::vector<T>& values, std::vector<std::uint32_t>& out,
+                  std::vector<unsigned char>& gaps) const {
+    const T h = level_h_[level];
     constexpr T eps = std::numeric_limits<T>::epsilon();
     const auto& objs = union_.objects();
     const Vec3<T> c = box.center();
@@ -344,8 +389,16 @@ template <class S, int K = 4> class CachedUnion {
     const T limit = u + T(2) * h + slack_;
     const T r = std::max(u + h, T(0)) + slack_;
     const T r2 = r * r * (T(1) + T(8) * eps);
+    // The gap byte rounds (v - u) down in units of 1/gap_per_unit_; NaN gives 0 (never skipped).
+    auto gap = [&](T v) -> unsigned char {
+      const T g = (v - u) * gap_per_unit_[level];
+      return g > T(0) ? static_cast<unsigned char>(std::min(std::floor(g), T(255))) : 0;
+    };
     auto keep = [&](std::uint32_t s, T v) {
-      if (!(v > limit) && box_distance2(box, objs[s].bounds()) <= r2) out.push_back(s);
+      if (!(v > limit) && box_distance2(box, objs[s].bounds()) <= r2) {
+        out.push_back(s);
+        gaps.push_back(gap(v));
+      }
     };
     if (!parent) {
       const std::size_t start = out.size();
@@ -356,6 +409,7 @@ template <class S, int K = 4> class CachedUnion {
             return true;
           });
       std::sort(out.begin() + std::ptrdiff_t(start), out.end());
+      for (std::size_t k = start; k < out.size(); ++k) gaps[k] = gap(objs[out[k]](c));
     } else {
       for (std::uint32_t j = 0; j < m; ++j) keep(parent[j], values[j]);
     }
@@ -395,6 +449,14 @@ template <class S, int K = 4> class CachedUnion {
     for (const Aabb<T>& b : {region, union_.tree().box})
       for (int a = 0; a < 3; ++a) scale = std::max({scale, std::abs(b.lo[a]), std::abs(b.hi[a])});
     slack_ = T(1024) * std::numeric_limits<T>::epsilon() * scale;
+    // Per level: cell size, half-diagonal (rounded up) and gap bytes per unit length (a kept
+    // candidate's gap is at most 2h plus the slack, 255 in bytes).
+    for (int l = 0; l <= max_depth; ++l) {
+      for (int a = 0; a < 3; ++a) level_size_[l][a] = ext[a] / T(std::uint64_t(dims_[a]) << l);
+      level_h_[l] =
+          T(0.5) * norm(level_size_[l]) * (T(1) + T(8) * std::numeric_limits<T>::epsilon());
+      gap_per_unit_[l] = T(255) / (T(2) * level_h_[l] + slack_);
+    }
     top_.assign(ncells, 0);
     lists_.assign(1, 0); // the shared empty list
     stats_.top_cells = ncells;
@@ -408,7 +470,6 @@ template <class S, int K = 4> class CachedUnion {
     Lists lists, kids;
     lists.reset(ncells, cells_per_task);
     {
-      const Level g = level_geometry(0);
       parallel_for(
           0, ncells, cells_per_task,
           [&](std::size_t begin, std::size_t end) {
@@ -416,7 +477,8 @@ template <class S, int K = 4> class CachedUnion {
             for (std::size_t k = begin; k < end; ++k) {
               auto& buf = lists.buf[k / cells_per_task];
               lists.first[k] = std::uint32_t(buf.size());
-              candidates(cell_box(cells[k].i, g), g.h, nullptr, 0, values, buf);
+              candidates(cell_box(cells[k].i, 0), 0, nullptr, 0, values, buf,
+                         lists.gaps[k / cells_per_task]);
               lists.count[k] = std::uint32_t(buf.size() - lists.first[k]);
             }
           },
@@ -432,7 +494,6 @@ template <class S, int K = 4> class CachedUnion {
       const bool can_split = level < max_depth;
       kids.reset(can_split ? 8 * n : 0, 8 * cells_per_task);
       if (can_split) {
-        const Level g = level_geometry(level + 1);
         // The cell's volume over the region's volume per bounded object.
         const double cell_volume = std::ldexp(double(objs.size()) / double(ncells), -3 * level);
         parallel_for(
@@ -446,13 +507,15 @@ template <class S, int K = 4> class CachedUnion {
                 if (m <= opt.max_candidates || double(m) * cell_volume < opt.min_split_gain)
                   continue;
                 auto& buf = kids.buf[k / cells_per_task];
+                auto& gaps = kids.gaps[k / cells_per_task];
                 std::size_t total = 0;
                 for (std::uint32_t o = 0; o < 8; ++o) {
                   std::uint32_t i[3];
                   for (int a = 0; a < 3; ++a) i[a] = 2 * cells[k].i[a] + ((o >> a) & 1);
                   const std::size_t item = 8 * k + o;
                   kids.first[item] = std::uint32_t(buf.size());
-                  candidates(cell_box(i, g), g.h, lists.of(cells[k].item), m, values, buf);
+                  candidates(cell_box(i, level + 1), level + 1, lists.of(cells[k].item), m, values,
+                             buf, gaps);
                   kids.count[item] = std::uint32_t(buf.size() - kids.first[item]);
                   total += kids.count[item];
                 }
@@ -464,7 +527,9 @@ template <class S, int K = 4> class CachedUnion {
       // What each cell becomes, within the cap. A leaf costs its list (m + 1 words; none for
       // one candidate, which the word holds, or for none, which shares lists_[0]); a split costs
       // 8 words and its children's lists instead. Longest lists are split first.
-      auto list_words = [](std::uint32_t m) -> std::size_t { return m >= 2 ? m + 1 : 0; };
+      auto list_words = [](std::uint32_t m) -> std::size_t {
+        return m >= 2 ? 1 + m + (m + 3) / 4 : 0;
+      };
       std::size_t used = top_.size() + nodes_.size() + lists_.size();
       for (std::size_t k = 0; k < n; ++k) used += list_words(count(k));
       std::vector<std::uint32_t> order(n);
@@ -513,8 +578,13 @@ template <class S, int K = 4> class CachedUnion {
           } else {
             // An empty list (an unbounded object wins everywhere in the cell) is lists_[0].
             w = word(list_tag, m == 0 ? 0 : lists_.size());
-            if (m > 0) lists_.push_back(m);
-            lists_.insert(lists_.end(), l, l + m);
+            if (m > 0) {
+              lists_.push_back(m);
+              lists_.insert(lists_.end(), l, l + m);
+              const std::size_t at = lists_.size();
+              lists_.resize(at + (m + 3) / 4, 0);
+              std::memcpy(lists_.data() + at, lists.gaps_of(cells[k].item), m);
+            }
           }
           ++stats_.leaf_cells;
           stats_.candidates += m;
@@ -538,6 +608,9 @@ template <class S, int K = 4> class CachedUnion {
   Vec3<T> inv_{};              // top cells per unit length, per axis
   std::uint32_t dims_[3] = {}; // top grid resolution
   T slack_ = T(0);
+  Vec3<T> level_size_[17] = {};
+  T level_h_[17] = {};
+  T gap_per_unit_[17] = {};
   std::vector<std::uint32_t> top_;   // one word per top cell, x fastest
   std::vector<std::uint32_t> nodes_; // 8 words per split cell
   std::vector<std::uint32_t> lists_; // [n, slot_1 .. slot_n] per leaf cell with n >= 2

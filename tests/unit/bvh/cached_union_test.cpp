@@ -110,12 +110,19 @@ template <int K, class T> void check_lattice() {
 
   const auto inside = test::random_points(opt.region, 4000, 3);
   EXPECT_EQ(expect_linear(u, inside), inside.size());
+  std::size_t listed = 0, evaluated = 0;
   for (const auto& p : inside) {
     const UnionCacheCell c = u.cell(p);
     ASSERT_TRUE(c.cached);
     ASSERT_LT(c.slots.size(), balls.size() / 10);
     for (std::size_t i = 1; i < c.slots.size(); ++i) ASSERT_LT(c.slots[i - 1], c.slots[i]);
+    ASSERT_GE(c.evaluated, 1u);
+    ASSERT_LE(c.evaluated, c.slots.size());
+    listed += c.slots.size();
+    evaluated += c.evaluated;
   }
+  // The gap test skips candidates that cannot win at the point itself.
+  EXPECT_LT(double(evaluated), 0.8 * double(listed));
   // Points on the region's upper faces (and one ulp above) are outside it.
   EXPECT_GT(expect_linear(u, grid_points(opt.region, st, st.depth, 4000, 4)), 3000u);
   // Inside the balls (negative values) and at their centres.
@@ -244,6 +251,7 @@ TYPED_TEST(CachedUnionTest, TheMemoryCapHoldsAndCellsFallBack) {
   // A cap that stops splits but not lists; and a cap below one top cell: no cache.
   UnionCacheOptions<T> mid = opt;
   mid.max_bytes = std::size_t(1) << 16;
+  mid.top_cells_per_object = 1;
   mid.max_candidates = 1;
   mid.min_split_gain = 0;
   const CachedUnion<Ball<T>> m(balls, mid);
