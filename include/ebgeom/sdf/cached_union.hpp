@@ -488,45 +488,48 @@ template <class S, int K = 4> class CachedUnion {
       stats_.depth = level;
       const std::size_t n = cells.size();
       auto count = [&](std::size_t k) { return lists.count[cells[k].item]; };
-      // Cells with long lists try a split: their 8 children's lists (item 8k + o of `kids`)
-      // are computed, and the split is wanted when it cuts the mean list by min_split_gain.
+      // Cells with long lists try a split: the lists of the 8 children of the t-th trying cell
+      // (items 8t + o of `kids`) are computed, and the split is wanted when it cuts the mean
+      // list enough (min_split_gain). A split cannot cut more than the whole list: cells for
+      // which even that is too little do not try.
       std::vector<unsigned char> want(n, 0);
-      const bool can_split = level < max_depth;
-      kids.reset(can_split ? 8 * n : 0, 8 * cells_per_task);
-      if (can_split) {
-        // The cell's volume over the region's volume per bounded object.
-        const double cell_volume = std::ldexp(double(objs.size()) / double(ncells), -3 * level);
-        parallel_for(
-            0, n, cells_per_task,
-            [&](std::size_t begin, std::size_t end) {
-              std::vector<T> values;
-              for (std::size_t k = begin; k < end; ++k) {
-                const std::uint32_t m = count(k);
-                // A split cannot gain more than the whole list: skip it when even that is too
-                // little.
-                if (m <= opt.max_candidates || double(m) * cell_volume < opt.min_split_gain)
-                  continue;
-                auto& buf = kids.buf[k / cells_per_task];
-                auto& gaps = kids.gaps[k / cells_per_task];
-                std::size_t total = 0;
-                for (std::uint32_t o = 0; o < 8; ++o) {
-                  std::uint32_t i[3];
-                  for (int a = 0; a < 3; ++a) i[a] = 2 * cells[k].i[a] + ((o >> a) & 1);
-                  const std::size_t item = 8 * k + o;
-                  kids.first[item] = std::uint32_t(buf.size());
-                  candidates(cell_box(i, level + 1), level + 1, lists.of(cells[k].item), m, values,
-                             buf, gaps);
-                  kids.count[item] = std::uint32_t(buf.size() - kids.first[item]);
-                  total += kids.count[item];
-                }
-                want[k] = (double(m) - double(total) / 8) * cell_volume >= opt.min_split_gain;
+      std::vector<std::uint32_t> tries, try_of(n, 0);
+      // The cell's volume over the region's volume per bounded object.
+      const double cell_volume = std::ldexp(double(objs.size()) / double(ncells), -3 * level);
+      for (std::size_t k = 0; k < n && level < max_depth; ++k)
+        if (count(k) > opt.max_candidates && double(count(k)) * cell_volume >= opt.min_split_gain) {
+          try_of[k] = std::uint32_t(tries.size());
+          tries.push_back(std::uint32_t(k));
+        }
+      kids.reset(8 * tries.size(), 8 * cells_per_task);
+      parallel_for(
+          0, tries.size(), cells_per_task,
+          [&](std::size_t begin, std::size_t end) {
+            std::vector<T> values;
+            for (std::size_t t = begin; t < end; ++t) {
+              const std::size_t k = tries[t];
+              const std::uint32_t m = count(k);
+              auto& buf = kids.buf[t / cells_per_task];
+              auto& gaps = kids.gaps[t / cells_per_task];
+              std::size_t total = 0;
+              for (std::uint32_t o = 0; o < 8; ++o) {
+                std::uint32_t i[3];
+                for (int a = 0; a < 3; ++a) i[a] = 2 * cells[k].i[a] + ((o >> a) & 1);
+                const std::size_t item = 8 * t + o;
+                kids.first[item] = std::uint32_t(buf.size());
+                candidates(cell_box(i, level + 1), level + 1, lists.of(cells[k].item), m, values,
+                           buf, gaps);
+                kids.count[item] = std::uint32_t(buf.size() - kids.first[item]);
+                total += kids.count[item];
               }
-            },
-            opt.exec);
-      }
-      // What each cell becomes, within the cap. A leaf costs its list (m + 1 words; none for
-      // one candidate, which the word holds, or for none, which shares lists_[0]); a split costs
-      // 8 words and its children's lists instead. Longest lists are split first.
+              want[k] = (double(m) - double(total) / 8) * cell_volume >= opt.min_split_gain;
+            }
+          },
+          opt.exec);
+      // What each cell becomes, within the cap. A leaf costs its list (1 + m words and m gap
+      // bytes; nothing for one candidate, which the word holds, or for none, which shares
+      // lists_[0]); a split costs 8 words and its children's lists instead. Longest lists are
+      // split first.
       auto list_words = [](std::uint32_t m) -> std::size_t {
         return m >= 2 ? 1 + m + (m + 3) / 4 : 0;
       };
@@ -544,7 +547,7 @@ template <class S, int K = 4> class CachedUnion {
           stats_.capped = true;
         } else if (want[k]) {
           std::size_t extra = 8;
-          for (std::size_t o = 0; o < 8; ++o) extra += list_words(kids.count[8 * k + o]);
+          for (std::size_t o = 0; o < 8; ++o) extra += list_words(kids.count[8 * try_of[k] + o]);
           extra -= list_words(count(k));
           if (used + extra <= cap_words) {
             used += extra;
@@ -564,7 +567,7 @@ template <class S, int K = 4> class CachedUnion {
           w = word(split_tag, g);
           nodes_.resize(nodes_.size() + 8, word(fallback_tag, 0));
           for (std::uint32_t o = 0; o < 8; ++o) {
-            Cell child{{}, g * 8 + o, 8 * k + o};
+            Cell child{{}, g * 8 + o, 8 * std::size_t(try_of[k]) + o};
             for (int a = 0; a < 3; ++a) child.i[a] = 2 * cells[k].i[a] + ((o >> a) & 1);
             next.push_back(child);
           }
