@@ -433,14 +433,15 @@ template <class T> PrecisionRun run_precision(const Options& o) {
   }
 #endif
 
-  // Timed passes, interleaved: R single-thread rounds, then R T-thread rounds.
+  // Timed passes, interleaved: in each of R rounds, every method runs once on one thread and then
+  // once on T threads, so a method's two passes of a round see about the same load (the paired
+  // thread scaling) and the methods of a round too (the paired ratios).
   for (int r = 0; r < o.reps; ++r)
-    for (std::size_t k = 0; k < passes.size(); ++k)
+    for (std::size_t k = 0; k < passes.size(); ++k) {
       run.rows[k].qps1.push_back(double(run.rows[k].queries) / passes[k](1));
-  if (o.threads > 1)
-    for (int r = 0; r < o.reps; ++r)
-      for (std::size_t k = 0; k < passes.size(); ++k)
+      if (o.threads > 1)
         run.rows[k].qpst.push_back(double(run.rows[k].queries) / passes[k](o.threads));
+    }
 
   // Agreement with the reference on the first points.
   for (std::size_t k = 0; k < run.rows.size(); ++k) {
@@ -508,17 +509,17 @@ void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
                 mi.generated ? "generate" : "parse", mi.parse_ms, mi.triangle_mesh_ms);
     std::printf("   %zu uniform points in the box + 10%%, %d runs (median), %d threads\n", o.points,
                 o.reps, o.threads);
-    std::printf("%-8s %-7s %10s %9s %7s %12s %12s %7s  %s\n", "method", "prec", "build ms", "MB",
-                "B/tri", "1-thr kq/s", (std::to_string(o.threads) + "-thr kq/s").c_str(), "scaling",
-                "note");
+    std::printf("%-8s %-7s %10s %9s %7s %12s %12s %7s %7s  %s\n", "method", "prec", "build ms",
+                "MB", "B/tri", "1-thr kq/s", (std::to_string(o.threads) + "-thr kq/s").c_str(),
+                "scaling", "paired", "note");
     for (const Row& r : run.rows) {
       const double q1 = qps(r.qps1), qt = qps(r.qpst);
       std::string note = r.compute == r.precision ? "" : r.compute;
       if (!r.note.empty()) note += (note.empty() ? "" : "; ") + r.note;
-      std::printf("%-8s %-7s %10.2f %9.2f %7.1f %12.1f %12.1f %7.2f  %s\n", r.method.c_str(),
-                  r.precision.c_str(), r.build_ms, double(r.memory) / 1e6,
+      std::printf("%-8s %-7s %10.2f %9.2f %7.1f %12.1f %12.1f %7.2f %7.2f  %s\n",
+                  r.method.c_str(), r.precision.c_str(), r.build_ms, double(r.memory) / 1e6,
                   double(r.memory) / double(std::max<std::size_t>(mi.triangles, 1)), q1 / 1e3,
-                  qt / 1e3, qt / q1, note.c_str());
+                  qt / 1e3, qt / q1, paired_ratio(r.qpst, r.qps1), note.c_str());
     }
     std::printf("agreement (first points; |d| within rel %g (embree 1e-5) + 16 ulp of the "
                 "coordinates):\n",
@@ -595,6 +596,7 @@ nlohmann::json to_json(const Options& o, const std::vector<PrecisionRun>& runs) 
       m["qps_1"] = qps(r.qps1);
       m["qps_threads"] = qps(r.qpst);
       m["scaling"] = qps(r.qpst) / qps(r.qps1);
+      m["scaling_paired"] = paired_ratio(r.qpst, r.qps1);
       m["qps_1_runs"] = r.qps1;
       m["qps_threads_runs"] = r.qpst;
       if (r.is_reference) {
