@@ -356,23 +356,54 @@ template <class S, int K = 4> class CachedUnion {
     return d2;
   }
 
-  Aabb<T> cell_box(const std::uint32_t (&i)[3], int level) const noexcept {
+  /// Cells of one level: size, half-diagonal (rounded up) and gap bytes per unit length (a kept
+  /// candidate's gap is at most 2h plus the slack: 255). Levels below 0 are coarser than the top
+  /// grid (the seed grid and its refinements, see `build`).
+  struct Geometry {
+    Vec3<T> size;
+    T h, gap_per_unit;
+  };
+  Geometry geometry(int level) const noexcept {
+    Geometry g;
+    for (int a = 0; a < 3; ++a)
+      g.size[a] = region_.extent()[a] / T(level >= 0 ? std::uint64_t(dims_[a]) << level
+                                                     : std::uint64_t(dims_[a]) >> -level);
+    g.h = T(0.5) * norm(g.size) * (T(1) + T(8) * std::numeric_limits<T>::epsilon());
+    g.gap_per_unit = T(255) / (T(2) * g.h + slack_);
+    return g;
+  }
+  Aabb<T> cell_box(const std::uint32_t (&i)[3], const Geometry& g) const noexcept {
     Aabb<T> box;
     for (int a = 0; a < 3; ++a) {
-      box.lo[a] = region_.lo[a] + T(i[a]) * level_size_[level][a];
-      box.hi[a] = region_.lo[a] + T(i[a] + 1) * level_size_[level][a];
+      box.lo[a] = region_.lo[a] + T(i[a]) * g.size[a];
+      box.hi[a] = region_.lo[a] + T(i[a] + 1) * g.size[a];
     }
     return box;
+  }
+  /// The lists of the 8 children of `parent` (items 8t + o of `out`, in the chunk of item 8t).
+  void child_lists(const Cell& parent, const Lists& lists, std::size_t t, const Geometry& g,
+                   std::vector<T>& values, Lists& out) const {
+    auto& buf = out.buf[8 * t / out.grain];
+    auto& gaps = out.gaps[8 * t / out.grain];
+    for (std::uint32_t o = 0; o < 8; ++o) {
+      std::uint32_t i[3];
+      for (int a = 0; a < 3; ++a) i[a] = 2 * parent.i[a] + ((o >> a) & 1);
+      const std::size_t item = 8 * t + o;
+      out.first[item] = std::uint32_t(buf.size());
+      candidates(cell_box(i, g), g, lists.of(parent.item), lists.count[parent.item], values, buf,
+                 gaps);
+      out.count[item] = std::uint32_t(buf.size() - out.first[item]);
+    }
   }
 
   /// Appends to `out`, in leaf order, the objects that may be the minimum somewhere in `box`
   /// (see the file comment): those of `parent` (m slots, ascending), or of the whole tree when
   /// `parent` is null; and to `gaps` their gap bytes at `level` (see `for_each_candidate`).
   /// `values` is scratch.
-  void candidates(const Aabb<T>& box, int level, const std::uint32_t* parent, std::uint32_t m,
-                  std::vector<T>& values, std::vector<std::uint32_t>& out,
+  void candidates(const Aabb<T>& box, const Geometry& geo, const std::uint32_t* parent,
+                  std::uint32_t m, std::vector<T>& values, std::vector<std::uint32_t>& out,
                   std::vector<unsigned char>& gaps) const {
-    const T h = level_h_[level];
+    const T h = geo.h;
     constexpr T eps = std::numeric_limits<T>::epsilon();
     const auto& objs = union_.objects();
     const Vec3<T> c = box.center();
@@ -391,7 +422,7 @@ template <class S, int K = 4> class CachedUnion {
     const T r2 = r * r * (T(1) + T(8) * eps);
     // The gap byte rounds (v - u) down in units of 1/gap_per_unit_; NaN gives 0 (never skipped).
     auto gap = [&](T v) -> unsigned char {
-      const T g = (v - u) * gap_per_unit_[level];
+      const T g = (v - u) * geo.gap_per_unit;
       return g > T(0) ? static_cast<unsigned char>(std::min(std::floor(g), T(255))) : 0;
     };
     auto keep = [&](std::uint32_t s, T v) {
@@ -427,16 +458,29 @@ template <class S, int K = 4> class CachedUnion {
     if (!all_finite(region.lo) || !all_finite(region.hi) || !(min_component(ext) > T(0))) return;
     const std::size_t cap_words = std::min<std::size_t>(opt.max_bytes, std::size_t(1) << 32) / 4;
 
-    // Top grid: near-cubic cells, about top_cells_per_object per object, within the cap.
+    // Top grid: near-cubic cells, about top_cells_per_object per object, within the cap. It
+    // refines a seed grid of about one cell per object `seed` times by octants, so that only the
+    // seed cells search the BVH and the top cells filter their lists (8^seed times fewer
+    // searches; the lists are the same or shorter, and as exact).
     const double volume = double(ext.x) * double(ext.y) * double(ext.z);
-    double side = std::cbrt(volume / std::max(1.0, opt.top_cells_per_object * double(objs.size())));
+    const double per_object = std::max(opt.top_cells_per_object, 1.0 / double(objs.size()));
+    double side = std::cbrt(volume / (per_object * double(objs.size())));
+    int seed = 0;
+    while (seed < 4 && per_object >= std::ldexp(1.0, 3 * (seed + 1))) ++seed;
     std::size_t ncells = 0;
     for (;; side *= 1.25) {
-      for (int a = 0; a < 3; ++a)
-        dims_[a] = std::uint32_t(std::clamp(std::round(double(ext[a]) / side), 1.0, 1048576.0));
+      bool single = true;
+      for (int a = 0; a < 3; ++a) {
+        const double cells = std::round(double(ext[a]) / std::ldexp(side, seed));
+        dims_[a] = std::uint32_t(std::clamp(cells, 1.0, std::ldexp(1.0, 20 - seed))) << seed;
+        single = single && cells <= 1.0;
+      }
       ncells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
       if (ncells + 1 <= cap_words) break;
-      if (dims_[0] == 1 && dims_[1] == 1 && dims_[2] == 1) return; // max_bytes < 8
+      if (single) { // max_bytes is very small: refine less
+        if (seed == 0) return;
+        --seed;
+      }
     }
     region_ = region;
     // Cell coordinates at the deepest level must fit in 32 bits.
@@ -449,41 +493,60 @@ template <class S, int K = 4> class CachedUnion {
     for (const Aabb<T>& b : {region, union_.tree().box})
       for (int a = 0; a < 3; ++a) scale = std::max({scale, std::abs(b.lo[a]), std::abs(b.hi[a])});
     slack_ = T(1024) * std::numeric_limits<T>::epsilon() * scale;
-    // Per level: cell size, half-diagonal (rounded up) and gap bytes per unit length (a kept
-    // candidate's gap is at most 2h plus the slack, 255 in bytes).
     for (int l = 0; l <= max_depth; ++l) {
-      for (int a = 0; a < 3; ++a) level_size_[l][a] = ext[a] / T(std::uint64_t(dims_[a]) << l);
-      level_h_[l] =
-          T(0.5) * norm(level_size_[l]) * (T(1) + T(8) * std::numeric_limits<T>::epsilon());
-      gap_per_unit_[l] = T(255) / (T(2) * level_h_[l] + slack_);
+      const Geometry g = geometry(l);
+      level_size_[l] = g.size;
+      gap_per_unit_[l] = g.gap_per_unit;
     }
     top_.assign(ncells, 0);
     lists_.assign(1, 0); // the shared empty list
     stats_.top_cells = ncells;
     for (int a = 0; a < 3; ++a) stats_.dims[a] = dims_[a];
 
-    // Level 0: every top cell's candidates from the BVH.
-    std::vector<Cell> cells(ncells), next;
-    for (std::uint32_t z = 0, k = 0; z < dims_[2]; ++z)
-      for (std::uint32_t y = 0; y < dims_[1]; ++y)
-        for (std::uint32_t x = 0; x < dims_[0]; ++x, ++k) cells[k] = {{x, y, z}, k, k};
+    // The seed cells' candidates from the BVH, then every seed cell refined `seed` times.
+    std::vector<Cell> cells, next;
+    for (std::uint32_t z = 0; z < dims_[2] >> seed; ++z)
+      for (std::uint32_t y = 0; y < dims_[1] >> seed; ++y)
+        for (std::uint32_t x = 0; x < dims_[0] >> seed; ++x)
+          cells.push_back({{x, y, z}, 0, cells.size()});
     Lists lists, kids;
-    lists.reset(ncells, cells_per_task);
-    {
+    lists.reset(cells.size(), cells_per_task);
+    const Geometry seed_geometry = geometry(-seed);
+    parallel_for(
+        0, cells.size(), cells_per_task,
+        [&](std::size_t begin, std::size_t end) {
+          std::vector<T> values;
+          for (std::size_t k = begin; k < end; ++k) {
+            auto& buf = lists.buf[k / cells_per_task];
+            lists.first[k] = std::uint32_t(buf.size());
+            candidates(cell_box(cells[k].i, seed_geometry), seed_geometry, nullptr, 0, values, buf,
+                       lists.gaps[k / cells_per_task]);
+            lists.count[k] = std::uint32_t(buf.size() - lists.first[k]);
+          }
+        },
+        opt.exec);
+    for (int level = -seed + 1; level <= 0; ++level) {
+      const Geometry g = geometry(level);
+      kids.reset(8 * cells.size(), 8 * cells_per_task);
       parallel_for(
-          0, ncells, cells_per_task,
+          0, cells.size(), cells_per_task,
           [&](std::size_t begin, std::size_t end) {
             std::vector<T> values;
-            for (std::size_t k = begin; k < end; ++k) {
-              auto& buf = lists.buf[k / cells_per_task];
-              lists.first[k] = std::uint32_t(buf.size());
-              candidates(cell_box(cells[k].i, 0), 0, nullptr, 0, values, buf,
-                         lists.gaps[k / cells_per_task]);
-              lists.count[k] = std::uint32_t(buf.size() - lists.first[k]);
-            }
+            for (std::size_t t = begin; t < end; ++t)
+              child_lists(cells[t], lists, t, g, values, kids);
           },
           opt.exec);
+      next.clear();
+      for (std::size_t t = 0; t < cells.size(); ++t)
+        for (std::uint32_t o = 0; o < 8; ++o) {
+          Cell child{{}, 0, 8 * t + o};
+          for (int a = 0; a < 3; ++a) child.i[a] = 2 * cells[t].i[a] + ((o >> a) & 1);
+          next.push_back(child);
+        }
+      std::swap(cells, next);
+      std::swap(lists, kids);
     }
+    for (Cell& c : cells) c.word_at = (std::size_t(c.i[2]) * dims_[1] + c.i[1]) * dims_[0] + c.i[0];
     for (int level = 0; !cells.empty(); ++level) {
       stats_.depth = level;
       const std::size_t n = cells.size();
@@ -502,27 +565,17 @@ template <class S, int K = 4> class CachedUnion {
           tries.push_back(std::uint32_t(k));
         }
       kids.reset(8 * tries.size(), 8 * cells_per_task);
+      const Geometry child_geometry = geometry(level + 1);
       parallel_for(
           0, tries.size(), cells_per_task,
           [&](std::size_t begin, std::size_t end) {
             std::vector<T> values;
             for (std::size_t t = begin; t < end; ++t) {
               const std::size_t k = tries[t];
-              const std::uint32_t m = count(k);
-              auto& buf = kids.buf[t / cells_per_task];
-              auto& gaps = kids.gaps[t / cells_per_task];
+              child_lists(cells[k], lists, t, child_geometry, values, kids);
               std::size_t total = 0;
-              for (std::uint32_t o = 0; o < 8; ++o) {
-                std::uint32_t i[3];
-                for (int a = 0; a < 3; ++a) i[a] = 2 * cells[k].i[a] + ((o >> a) & 1);
-                const std::size_t item = 8 * t + o;
-                kids.first[item] = std::uint32_t(buf.size());
-                candidates(cell_box(i, level + 1), level + 1, lists.of(cells[k].item), m, values,
-                           buf, gaps);
-                kids.count[item] = std::uint32_t(buf.size() - kids.first[item]);
-                total += kids.count[item];
-              }
-              want[k] = (double(m) - double(total) / 8) * cell_volume >= opt.min_split_gain;
+              for (std::uint32_t o = 0; o < 8; ++o) total += kids.count[8 * t + o];
+              want[k] = (double(count(k)) - double(total) / 8) * cell_volume >= opt.min_split_gain;
             }
           },
           opt.exec);
@@ -611,8 +664,7 @@ template <class S, int K = 4> class CachedUnion {
   Vec3<T> inv_{};              // top cells per unit length, per axis
   std::uint32_t dims_[3] = {}; // top grid resolution
   T slack_ = T(0);
-  Vec3<T> level_size_[17] = {};
-  T level_h_[17] = {};
+  Vec3<T> level_size_[17] = {}; // cell size per octree level
   T gap_per_unit_[17] = {};
   std::vector<std::uint32_t> top_;   // one word per top cell, x fastest
   std::vector<std::uint32_t> nodes_; // 8 words per split cell
