@@ -20,11 +20,13 @@
 /// Costs. Memory: 4 bytes per top cell, 32 bytes per split cell and 4 + 5n bytes (rounded up to
 /// 4) per list of n >= 2 candidates (a single candidate is stored in the cell itself);
 /// `UnionCacheOptions::max_bytes` caps the total. Build: one BVH union query and one box-range
-/// search per top cell, then one evaluation of each parent candidate per child cell tried;
-/// parallel (`parallel_for`), and the result does not depend on the thread count. Queries outside
-/// the region, or in cells the memory cap left without a list, use the BVH. Objects with
-/// unbounded boxes are evaluated by every query. The cache is built only when `cacheable`
-/// (prunable and not `implicit`); otherwise every query uses the BVH.
+/// search per seed cell (about one per object), then one evaluation of each parent candidate
+/// per finer cell (top cells and the octants tried); parallel (`parallel_for`), and the result
+/// does not depend on the thread count. Queries outside the region, or in cells the memory cap
+/// left without a list, use the BVH. Objects with unbounded boxes are evaluated by every query.
+/// The cache is built only when `cacheable` (prunable and not `implicit`); otherwise every query
+/// uses the BVH.
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
