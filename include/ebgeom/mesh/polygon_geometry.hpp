@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "ebgeom/core/config.hpp"
 #include "ebgeom/core/vec.hpp"
 
 namespace ebgeom {
@@ -13,9 +14,11 @@ namespace ebgeom {
 /// Newell's normal of the polygon with `k` corners `corner(0..k-1)`: twice the vector area,
 /// sum_i (v_i - v_0) x (v_{i+1} - v_0) (origin-independent, so taken at v_0 for conditioning).
 /// Points outward for counter-clockwise corners; |result| = 2 * area for planar polygons; exact
-/// cross((v1 - v0), (v2 - v0)) for a triangle. Zero for degenerate polygons. O(k).
+/// cross((v1 - v0), (v2 - v0)) for a triangle. Zero for degenerate polygons. O(k). Never fused
+/// into FMAs (`EBGEOM_EXACT_KERNEL`): face normals, and `validate`'s zero-area test, are the same
+/// in `-march=native` builds as in baseline ones.
 template <class T, class CornerFn>
-Vec3<T> newell_normal(std::size_t k, const CornerFn& corner) noexcept {
+EBGEOM_EXACT_KERNEL Vec3<T> newell_normal(std::size_t k, const CornerFn& corner) noexcept {
   Vec3<T> n = Vec3<T>::zero();
   if (k < 3) return n;
   const Vec3<T> o = corner(0);
