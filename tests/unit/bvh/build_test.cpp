@@ -290,6 +290,76 @@ TEST(Morton, CodesInterleaveBitsAndOrderAlongTheCurve) {
   EXPECT_EQ(morton_code(Vec3<double>{1, 1, 1}, box), (std::uint64_t(1) << 63) - 1);
 }
 
+// build_morton (radix sort, topology top down, boxes bottom up) against a reference built the
+// straightforward way: (code, index) pairs sorted with std::sort, then build_top_down with a
+// partition that cuts each sorted range at its highest differing bit (the middle for equal codes).
+template <class T>
+BuildTree<T> morton_reference(const std::vector<Aabb<T>>& boxes, const std::vector<Vec3<T>>& cent,
+                              std::uint32_t leaf) {
+  Aabb<T> cbox;
+  for (const auto& c : cent) cbox.extend(c);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(boxes.size());
+  for (std::uint32_t i = 0; i < keys.size(); ++i) keys[i] = {morton_code(cent[i], cbox), i};
+  std::sort(keys.begin(), keys.end());
+  std::vector<Aabb<T>> sb;
+  std::vector<Vec3<T>> sc;
+  std::vector<std::uint64_t> codes;
+  for (const auto& k : keys)
+    sb.push_back(boxes[k.second]), sc.push_back(cent[k.second]), codes.push_back(k.first);
+  auto split = [&](const PartitionInput<T>&, std::uint32_t* idx, std::uint32_t cnt) {
+    Parts p;
+    p.count = 2;
+    p.ends[1] = cnt;
+    const std::uint64_t a = codes[idx[0]], b = codes[idx[cnt - 1]];
+    if (a == b) {
+      p.ends[0] = cnt / 2;
+      return p;
+    }
+    int bit = 63;
+    while (!(((a ^ b) >> bit) & 1)) --bit;
+    std::uint32_t i = 0;
+    while (((codes[idx[i]] >> bit) & 1) == 0) ++i;
+    p.ends[0] = i;
+    return p;
+  };
+  BuildTree<T> t = build_top_down<T>(Span<const Aabb<T>>(sb), Span<const Vec3<T>>(sc), split,
+                                     LeafSizeStop{leaf});
+  for (auto& p : t.prim) p = keys[p].second;
+  return t;
+}
+
+TYPED_TEST(BuildTest, MortonEqualsTopDownReference) {
+  using T = TypeParam;
+  // Random boxes (radix path above 4,096), a coarse lattice with many equal codes, few boxes.
+  std::vector<std::vector<Aabb<T>>> inputs = {random_boxes<T>(20000), random_boxes<T>(300)};
+  std::vector<Aabb<T>> lattice;
+  for (int i = 0; i < 9000; ++i) {
+    const T x = T(i % 7), y = T(i / 7 % 5), z = T(i % 3);
+    lattice.push_back(Aabb<T>::of({x, y, z}, {x + T(1), y + T(1), z + T(1)}));
+  }
+  inputs.push_back(lattice);
+  for (const auto& boxes : inputs)
+    for (std::uint32_t leaf : {1u, 4u, 8u}) {
+      const auto cent = centers(boxes);
+      const BuildTree<T> got =
+          build_morton(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(cent), leaf);
+      const BuildTree<T> ref = morton_reference(boxes, cent, leaf);
+      ASSERT_EQ(got.nodes.size(), ref.nodes.size());
+      EXPECT_EQ(got.prim, ref.prim);
+      EXPECT_EQ(got.depth, ref.depth);
+      for (std::size_t i = 0; i < got.nodes.size(); ++i) {
+        const auto &g = got.nodes[i], &r = ref.nodes[i];
+        ASSERT_EQ(g.first, r.first) << i;
+        ASSERT_EQ(g.count, r.count) << i;
+        ASSERT_EQ(g.children, r.children) << i;
+        for (int a = 0; a < 3; ++a) {
+          ASSERT_EQ(g.box.lo[a], r.box.lo[a]) << i;
+          ASSERT_EQ(g.box.hi[a], r.box.hi[a]) << i;
+        }
+      }
+    }
+}
+
 TEST(Refit, BoxesFollowMovedPrimitives) {
   auto boxes = random_boxes<double>(1000);
   const auto cent = centers(boxes);
