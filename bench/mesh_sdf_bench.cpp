@@ -516,8 +516,8 @@ void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
       const double q1 = qps(r.qps1), qt = qps(r.qpst);
       std::string note = r.compute == r.precision ? "" : r.compute;
       if (!r.note.empty()) note += (note.empty() ? "" : "; ") + r.note;
-      std::printf("%-8s %-7s %10.2f %9.2f %7.1f %12.1f %12.1f %7.2f %7.2f  %s\n",
-                  r.method.c_str(), r.precision.c_str(), r.build_ms, double(r.memory) / 1e6,
+      std::printf("%-8s %-7s %10.2f %9.2f %7.1f %12.1f %12.1f %7.2f %7.2f  %s\n", r.method.c_str(),
+                  r.precision.c_str(), r.build_ms, double(r.memory) / 1e6,
                   double(r.memory) / double(std::max<std::size_t>(mi.triangles, 1)), q1 / 1e3,
                   qt / 1e3, qt / q1, paired_ratio(r.qpst, r.qps1), note.c_str());
     }

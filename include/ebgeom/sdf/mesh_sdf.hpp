@@ -50,7 +50,8 @@ template <class T, int W> struct TriBlock {
 /// or 8 doubles (one 512-bit register; +11% and +25% queries per second over 8 and 4); with AVX,
 /// 8 floats or 8 doubles (+5-10% over 4 for double); otherwise 8 floats or 4 doubles. Translation
 /// units compiled for different instruction sets therefore get different default `MeshSdf` types
-/// (a link error, never a silent mismatch, if one is passed between them); spell out W to share one.
+/// (a link error, never a silent mismatch, if one is passed between them); spell out W to share
+/// one.
 #if defined(__AVX512F__)
 template <class T> inline constexpr int default_block_width = sizeof(T) == 4 ? 16 : 8;
 #elif defined(__AVX__)
