@@ -68,8 +68,7 @@ template <class T> struct GridFrame {
     for (int a = 0; a < 3; ++a) tiles[a] = (n[a] + grid_tile - 1) / grid_tile;
   }
   Vec3<T> point(std::size_t i, std::size_t j, std::size_t k) const noexcept {
-    return {grid_coordinate(o.x, i, h.x), grid_coordinate(o.y, j, h.y),
-            grid_coordinate(o.z, k, h.z)};
+    return grid_point(o, h, i, j, k);
   }
   /// Samples [lo, hi) of tiles [a, b) (clipped to the grid).
   void sample_range(const std::array<std::size_t, 3>& a, const std::array<std::size_t, 3>& b,

@@ -33,15 +33,15 @@ inline const char* to_string(Centering c) noexcept {
   return c == Centering::cell ? "cell" : "node";
 }
 
-/// `o + i·h`, the coordinate of sample `i` on an axis, and `lo + h/2`, a cell-centred origin:
-/// never contracted into fused multiply-adds (`EBGEOM_EXACT_KERNEL`), so every path that places
-/// samples (`GridSpec::point`, the tile samplers) agrees bit for bit in `-mfma` / `-march=native`
-/// builds too, where the compiler would otherwise fuse some call sites and not others.
-template <class T> EBGEOM_EXACT_KERNEL inline T grid_coordinate(T o, std::size_t i, T h) noexcept {
-  return o + T(i) * h;
-}
-template <class T> EBGEOM_EXACT_KERNEL inline T cell_origin(T lo, T h) noexcept {
-  return lo + h * T(0.5);
+/// Sample `(i, j, k)` of a grid with origin `o` and spacing `h`: `o + (i, j, k)·h`, never
+/// contracted into fused multiply-adds (`EBGEOM_EXACT_KERNEL`), so every path that places samples
+/// (`GridSpec::point`, the tile samplers) agrees bit for bit in `-mfma` / `-march=native` builds
+/// too, where the compiler would otherwise fuse some inlined call sites and not others. One
+/// out-of-line call per sample.
+template <class T>
+EBGEOM_EXACT_KERNEL inline Vec3<T> grid_point(const Vec3<T>& o, const Vec3<T>& h, std::size_t i,
+                                              std::size_t j, std::size_t k) noexcept {
+  return {o.x + T(i) * h.x, o.y + T(j) * h.y, o.z + T(k) * h.z};
 }
 
 /// A regular grid of samples over `box`. `dims` are the number of samples per axis (x, y, z).
@@ -77,15 +77,13 @@ template <class T> struct GridSpec {
   }
   /// Position of sample (0, 0, 0).
   Vec3<T> origin() const noexcept {
-    if (centering != Centering::cell) return box.lo;
-    const Vec3<T> h = spacing();
-    return {cell_origin(box.lo.x, h.x), cell_origin(box.lo.y, h.y), cell_origin(box.lo.z, h.z)};
+    // h · 0.5 is exact, so the origin is the same whether or not the add is fused.
+    return centering == Centering::cell ? box.lo + spacing() * T(0.5) : box.lo;
   }
   /// Position of sample `(i, j, k)`: `origin() + (i, j, k) * spacing()`, computed in `T`.
   Vec3<T> point(std::size_t i, std::size_t j, std::size_t k) const noexcept {
     const Vec3<T> o = origin(), h = spacing();
-    return {grid_coordinate(o.x, i, h.x), grid_coordinate(o.y, j, h.y),
-            grid_coordinate(o.z, k, h.z)};
+    return grid_point(o, h, i, j, k);
   }
   /// Array index of sample `(i, j, k)` (x fastest).
   std::size_t index(std::size_t i, std::size_t j, std::size_t k) const noexcept {
