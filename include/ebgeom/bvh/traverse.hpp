@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -84,6 +85,37 @@ template <class T> constexpr T prune_limit(T best2, T abs_slack = T(0)) noexcept
          std::numeric_limits<T>::min();
 }
 
+namespace detail {
+/// Monotone 32-bit key of a squared distance (>= 0): the bits of its float rounding, which order
+/// as unsigned integers as the values do (ties possible in double: order only guides the search).
+template <class T> inline std::uint32_t distance_key(T d2) noexcept {
+  const float f = float(d2);
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+
+/// Sorts the children with `d2[k] < lim` nearest first into `key` ((distance key << 32) | k, the
+/// others last) with a branch-free odd-even transposition network, and returns their count.
+/// Replaces an insertion sort whose data-dependent branches mispredicted at every node.
+template <class T, int K>
+inline int order_children(const T (&d2)[K], T lim, std::uint64_t (&key)[K]) noexcept {
+  int m = 0;
+  for (int k = 0; k < K; ++k) {
+    const bool in = d2[k] < lim;
+    m += in;
+    key[k] = in ? (std::uint64_t(distance_key(d2[k])) << 32) | std::uint64_t(k) : ~std::uint64_t(0);
+  }
+  for (int r = 0; r < K; ++r)
+    for (int i = r & 1; i + 1 < K; i += 2) {
+      const std::uint64_t a = key[i], b = key[i + 1];
+      key[i] = a < b ? a : b;
+      key[i + 1] = a < b ? b : a;
+    }
+  return m;
+}
+} // namespace detail
+
 /// Nearest-first branch and bound (see the file comment). `best2` is in/out: the initial bound and
 /// the final best squared distance the leaf callback reported.
 template <bool Shrink = false, class T, int K, class BV, class LeafFn>
@@ -99,38 +131,34 @@ void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& 
   // on the stack, nearest on top, and are re-checked against the bound when popped.
   FixedStack<Pending<T>, WideBvh<T, K, BV>::stack_capacity> todo;
   ChildRef cur = bvh.root;
+  bool shrink = Shrink; // until the first leaf: its exact distance is then the tighter bound
   for (;;) {
     if (cur.is_leaf()) {
       leaf(cur.index, cur.count, best2);
+      shrink = false;
     } else {
       const auto& n = bvh.nodes[cur.index];
       T d2[K];
       child_dist2(n, p, d2);
-      if constexpr (Shrink) {
+      if (Shrink && shrink) {
         T far2[K];
         child_far_dist2(n, p, far2);
         T m = best2;
         for (int k = 0; k < K; ++k) m = std::min(m, shrink_bound(far2[k]));
         best2 = m;
       }
-      // Children that can still hold a closer primitive, sorted far to near.
-      Pending<T> c[K];
-      int m = 0;
+      // Children that can still hold a closer primitive, nearest first: branch-free sort of
+      // (distance, child) keys (`order_children`); the nearest is expanded, the others pushed
+      // far to near.
       const T lim = prune_limit(best2, abs_slack);
-      for (int k = 0; k < K; ++k) {
-        if (d2[k] < lim) {
-          Pending<T> e{n.child[k], d2[k]};
-          int j = m++;
-          while (j > 0 && c[j - 1].dist2 < e.dist2) {
-            c[j] = c[j - 1];
-            --j;
-          }
-          c[j] = e;
-        }
-      }
+      std::uint64_t key[K];
+      const int m = detail::order_children<T, K>(d2, lim, key);
       if (m > 0) {
-        for (int j = 0; j + 1 < m; ++j) todo.push(c[j]);
-        cur = c[m - 1].ref;
+        for (int j = m - 1; j > 0; --j) {
+          const int k = int(key[j] & 0xffu);
+          todo.push({n.child[k], d2[k]});
+        }
+        cur = n.child[key[0] & 0xffu];
         continue;
       }
     }

@@ -92,6 +92,56 @@ TYPED_TEST(MeshSdfTest, BlockKernelEqualsTheScalarKernelBitForBit) {
   }
 }
 
+namespace {
+/// `lane_min` against a scalar scan: the minimum and every lane equal to it.
+template <class T, int W> void lane_min_matches_a_scan(std::mt19937_64& rng) {
+  std::uniform_int_distribution<int> pick(0, 7);
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  const T inf = std::numeric_limits<T>::infinity();
+  for (int round = 0; round < 300; ++round) {
+    T v[W];
+    for (int l = 0; l < W; ++l) v[l] = T(pick(rng)); // few values: many ties
+    if (round % 7 == 0) v[round % W] = inf;
+    if (round % 11 == 0 && W > 1) v[(round / 11) % W] = nan; // a NaN lane never wins
+    T want = std::numeric_limits<T>::infinity();
+    for (int l = 0; l < W; ++l)
+      if (v[l] < want) want = v[l];
+    const LaneMin<T, W> got = lane_min<T, W>(v);
+    ASSERT_EQ(got.min, want) << "W " << W;
+    for (int l = 0; l < W; ++l) // a NaN lane counts as +inf
+      ASSERT_EQ(((got.mask >> l) & 1) != 0, (std::isnan(v[l]) ? inf : v[l]) == want)
+          << "W " << W << " lane " << l;
+  }
+}
+} // namespace
+
+TYPED_TEST(MeshSdfTest, LaneMinIsTheMinimumAndTheLanesAtIt) {
+  std::mt19937_64 rng(9);
+  lane_min_matches_a_scan<TypeParam, 1>(rng);
+  lane_min_matches_a_scan<TypeParam, 4>(rng);
+  lane_min_matches_a_scan<TypeParam, 5>(rng); // not a power of two
+  lane_min_matches_a_scan<TypeParam, 8>(rng);
+  lane_min_matches_a_scan<TypeParam, 16>(rng);
+  lane_min_matches_a_scan<TypeParam, 33>(rng); // 64-bit mask
+  lane_min_matches_a_scan<TypeParam, 64>(rng);
+}
+
+TYPED_TEST(MeshSdfTest, BlockMinReportsOnlyBlocksWithinTheBound) {
+  using T = TypeParam;
+  TriBlock<T, 8> blk;
+  for (int l = 0; l < 8; ++l)
+    blk.set(l, {T(l), 0, 0}, {T(l) + T(0.5), 0, 0}, {T(l), T(0.5), 0}); // lanes 0 and 1 tie at p
+  const Vec3<T> p{T(0.75), T(0), T(1)};
+  T d2[8];
+  block_distance2(blk, p, d2);
+  const T best = std::min(d2[0], d2[1]);
+  ASSERT_EQ(d2[0], d2[1]);
+  const LaneMin<T, 8> hit = block_min(blk, p, best);
+  EXPECT_EQ(hit.min, best);
+  EXPECT_EQ(hit.mask, 3u);
+  EXPECT_EQ(block_min(blk, p, std::nextafter(best, T(0))).mask, 0u);
+}
+
 TYPED_TEST(MeshSdfTest, EqualsBruteForceForEveryArityBuilderAndBlockWidth) {
   using T = TypeParam;
   const auto soup = torus<T>();

@@ -193,3 +193,36 @@ TYPED_TEST(TraverseTest, SphereBoundingVolumesGiveTheSameNearestAndVisits) {
   });
   EXPECT_EQ(best2, brute_force_nearest(Span<const Vec3<T>>(moved), q).dist2);
 }
+
+namespace {
+/// `order_children` against a plain sort of the surviving children.
+template <class T, int K> void order_children_matches_a_sort(std::mt19937_64& rng) {
+  std::uniform_int_distribution<int> pick(0, 5);
+  const T pool[6] = {T(0), T(0.25), T(1), T(1), T(3), std::numeric_limits<T>::infinity()};
+  for (int round = 0; round < 500; ++round) {
+    T d2[K];
+    for (int k = 0; k < K; ++k) d2[k] = pool[pick(rng)]; // ties, zeros and empty slots
+    const T lim = round % 3 == 0 ? std::numeric_limits<T>::infinity() : T(1.5);
+    std::uint64_t key[K];
+    const int m = detail::order_children<T, K>(d2, lim, key);
+    std::vector<std::pair<T, int>> want;
+    for (int k = 0; k < K; ++k)
+      if (d2[k] < lim) want.push_back({d2[k], k});
+    std::sort(want.begin(), want.end());
+    ASSERT_EQ(m, int(want.size()));
+    for (int j = 0; j < m; ++j) {
+      const int k = int(key[j] & 0xffu);
+      ASSERT_EQ(d2[k], want[std::size_t(j)].first) << "K " << K << " position " << j;
+      ASSERT_EQ(k, want[std::size_t(j)].second) << "ties keep the child order";
+    }
+  }
+}
+} // namespace
+
+TYPED_TEST(TraverseTest, OrderChildrenSortsTheSurvivorsNearestFirst) {
+  std::mt19937_64 rng(11);
+  order_children_matches_a_sort<TypeParam, 2>(rng);
+  order_children_matches_a_sort<TypeParam, 4>(rng);
+  order_children_matches_a_sort<TypeParam, 8>(rng);
+  order_children_matches_a_sort<TypeParam, 16>(rng);
+}
