@@ -197,8 +197,14 @@ TYPED_TEST(TraverseTest, SphereBoundingVolumesGiveTheSameNearestAndVisits) {
 namespace {
 /// `order_children` against a plain sort of the surviving children.
 template <class T, int K> void order_children_matches_a_sort(std::mt19937_64& rng) {
-  std::uniform_int_distribution<int> pick(0, 5);
-  const T pool[6] = {T(0), T(0.25), T(1), T(1), T(3), std::numeric_limits<T>::infinity()};
+  std::uniform_int_distribution<int> pick(0, 6);
+  const T pool[7] = {T(0),
+                     T(-0.0),
+                     T(0.25),
+                     T(1),
+                     T(1),
+                     T(3),
+                     std::numeric_limits<T>::infinity()}; // -0 ties with +0
   for (int round = 0; round < 500; ++round) {
     T d2[K];
     for (int k = 0; k < K; ++k) d2[k] = pool[pick(rng)]; // ties, zeros and empty slots
