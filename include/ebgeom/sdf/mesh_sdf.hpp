@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "ebgeom/bvh/build.hpp"
+#include "ebgeom/bvh/simd_nodes.hpp" // <immintrin.h> where the target has SSE2 / AVX
 #include "ebgeom/bvh/traverse.hpp"
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/aabb.hpp"
@@ -66,9 +67,14 @@ template <class T> inline constexpr int default_block_width = sizeof(T) == 4 ? 8
 /// `distance2` bit for bit; divisions are computed unconditionally with a safe divisor so the
 /// loop has no branch and vectorises (checked with -fopt-info-vec: 8 floats per AVX2 register at
 /// -O2 and -O3, 4 with SSE2).
+///
+/// `detail::block_distance2_inline` is the kernel itself, always inlined, for callers that carry
+/// the same `EBGEOM_VECTOR_KERNEL` options (`block_min` keeps the distances in registers);
+/// inlined anywhere else it would take that caller's options (FP contraction included).
+namespace detail {
 template <class T, int W>
-EBGEOM_VECTOR_KERNEL inline void block_distance2(const TriBlock<T, W>& t, const Vec3<T>& p,
-                                                 T (&out)[W]) noexcept {
+EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE void
+block_distance2_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T (&out)[W]) noexcept {
   T res[W]; // a local result array: no aliasing with `t`, so no runtime alias check is needed
   for (int l = 0; l < W; ++l) {
     const T ax = t.ax[l], ay = t.ay[l], az = t.az[l];
@@ -135,6 +141,13 @@ EBGEOM_VECTOR_KERNEL inline void block_distance2(const TriBlock<T, W>& t, const 
   }
   for (int l = 0; l < W; ++l) out[l] = res[l];
 }
+} // namespace detail
+
+template <class T, int W>
+EBGEOM_VECTOR_KERNEL inline void block_distance2(const TriBlock<T, W>& t, const Vec3<T>& p,
+                                                 T (&out)[W]) noexcept {
+  detail::block_distance2_inline(t, p, out);
+}
 
 namespace detail {
 /// Index of the lowest set bit of `x` (x != 0).
@@ -154,6 +167,57 @@ template <class U> inline int lowest_bit(U x) noexcept {
 
 /// One bit per lane of a W-wide block.
 template <int W> using LaneMask = std::conditional_t<(W > 32), std::uint64_t, std::uint32_t>;
+
+namespace detail {
+enum class LaneCmp { le, eq };
+
+/// Bit l set where `v[l] <= b` (`LaneCmp::le`) or `v[l] == b` (`eq`); false for NaN lanes, as the
+/// C++ comparisons. GCC 12 builds such a mask from vector compares with shifts, ors and shuffles
+/// (with `lane_min`, 11% of a double ogre query's profile); with AVX-512 one compare gives it (a
+/// mask register), with AVX a compare and a `movemask`. The plain loop is the reference and the
+/// fallback.
+template <LaneCmp C, class T, int W>
+EBGEOM_FORCE_INLINE LaneMask<W> lane_mask(const T (&v)[W], T b) noexcept {
+#if defined(__AVX__)
+  constexpr bool simd_type = std::is_same_v<T, float> || std::is_same_v<T, double>;
+#endif
+#if defined(__AVX512F__)
+  if constexpr (simd_type && W * sizeof(T) % 64 == 0) {
+    constexpr int n = int(64 / sizeof(T)); // lanes per register
+    constexpr int pred = C == LaneCmp::le ? _CMP_LE_OQ : _CMP_EQ_OQ;
+    LaneMask<W> mask = 0;
+    for (int r = 0; r < W / n; ++r) {
+      std::uint32_t m;
+      if constexpr (sizeof(T) == 8)
+        m = _mm512_cmp_pd_mask(_mm512_loadu_pd(v + r * n), _mm512_set1_pd(b), pred);
+      else
+        m = _mm512_cmp_ps_mask(_mm512_loadu_ps(v + r * n), _mm512_set1_ps(b), pred);
+      mask |= LaneMask<W>(m) << (r * n);
+    }
+    return mask;
+  }
+#endif
+#if defined(__AVX__)
+  if constexpr (simd_type && W * sizeof(T) % 32 == 0) {
+    constexpr int n = int(32 / sizeof(T));
+    constexpr int pred = C == LaneCmp::le ? _CMP_LE_OQ : _CMP_EQ_OQ;
+    LaneMask<W> mask = 0;
+    for (int r = 0; r < W / n; ++r) {
+      int m;
+      if constexpr (sizeof(T) == 8)
+        m = _mm256_movemask_pd(_mm256_cmp_pd(_mm256_loadu_pd(v + r * n), _mm256_set1_pd(b), pred));
+      else
+        m = _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(v + r * n), _mm256_set1_ps(b), pred));
+      mask |= LaneMask<W>(unsigned(m)) << (r * n);
+    }
+    return mask;
+  }
+#endif
+  LaneMask<W> mask = 0;
+  for (int l = 0; l < W; ++l) mask |= LaneMask<W>(C == LaneCmp::le ? v[l] <= b : v[l] == b) << l;
+  return mask;
+}
+} // namespace detail
 
 /// The smallest of a block's W lane values and the lanes holding it (bit l of `mask`).
 template <class T, int W> struct LaneMin {
@@ -190,9 +254,7 @@ EBGEOM_VECTOR_KERNEL inline LaneMin<T, W> lane_min(const T (&v)[W]) noexcept {
     }
   }
   const T m = t[0];
-  LaneMask<W> mask = 0;
-  for (int l = 0; l < W; ++l) mask |= LaneMask<W>(u[l] == m) << l;
-  return {m, mask};
+  return {m, detail::lane_mask<detail::LaneCmp::eq>(u, m)};
 }
 
 /// The lanes of a block that can lower a search bound: `lane_min` of `block_distance2(t, p)` when
@@ -202,10 +264,8 @@ template <class T, int W>
 EBGEOM_VECTOR_KERNEL inline LaneMin<T, W> block_min(const TriBlock<T, W>& t, const Vec3<T>& p,
                                                     T b2) noexcept {
   T d2[W];
-  block_distance2(t, p, d2);
-  LaneMask<W> near = 0;
-  for (int l = 0; l < W; ++l) near |= LaneMask<W>(d2[l] <= b2) << l;
-  if (near == 0) return {b2, 0};
+  detail::block_distance2_inline(t, p, d2);
+  if (detail::lane_mask<detail::LaneCmp::le>(d2, b2) == 0) return {b2, 0};
   return lane_min<T, W>(d2);
 }
 

@@ -113,7 +113,37 @@ template <class T, int W> void lane_min_matches_a_scan(std::mt19937_64& rng) {
           << "W " << W << " lane " << l;
   }
 }
+
+/// `detail::lane_mask` (vector compares where the target has them) against the C++ comparisons.
+template <class T, int W> void lane_mask_matches_the_comparisons(std::mt19937_64& rng) {
+  std::uniform_int_distribution<int> pick(0, 5);
+  const T special[4] = {std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity(),
+                        T(-0.0), T(0)};
+  for (int round = 0; round < 300; ++round) {
+    T v[W];
+    for (int l = 0; l < W; ++l) v[l] = T(pick(rng));
+    v[round % W] = special[round % 4];
+    const T b = round % 9 == 0 ? T(0) : T(pick(rng)) + (round % 2 ? T(0) : T(0.5));
+    const LaneMask<W> le = detail::lane_mask<detail::LaneCmp::le>(v, b);
+    const LaneMask<W> eq = detail::lane_mask<detail::LaneCmp::eq>(v, b);
+    for (int l = 0; l < W; ++l) {
+      ASSERT_EQ(((le >> l) & 1) != 0, v[l] <= b) << "W " << W << " lane " << l;
+      ASSERT_EQ(((eq >> l) & 1) != 0, v[l] == b) << "W " << W << " lane " << l;
+    }
+  }
+}
 } // namespace
+
+TYPED_TEST(MeshSdfTest, LaneMaskEqualsTheScalarComparisons) {
+  std::mt19937_64 rng(10);
+  lane_mask_matches_the_comparisons<TypeParam, 1>(rng);
+  lane_mask_matches_the_comparisons<TypeParam, 4>(rng);
+  lane_mask_matches_the_comparisons<TypeParam, 8>(rng);
+  lane_mask_matches_the_comparisons<TypeParam, 16>(rng);
+  lane_mask_matches_the_comparisons<TypeParam, 24>(rng); // several registers, not a power of two
+  lane_mask_matches_the_comparisons<TypeParam, 33>(rng);
+  lane_mask_matches_the_comparisons<TypeParam, 64>(rng); // 64-bit mask
+}
 
 TYPED_TEST(MeshSdfTest, LaneMinIsTheMinimumAndTheLanesAtIt) {
   std::mt19937_64 rng(9);
