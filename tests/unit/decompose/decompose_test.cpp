@@ -135,7 +135,9 @@ TEST(EstimateBrickWork, DenseCountsSamplesBandIsConservative) {
       for (std::size_t j = r.lo[1]; j < r.hi[1]; ++j)
         for (std::size_t i = r.lo[0]; i < r.hi[0]; ++i)
           near = near || std::abs(ball(spec.point(i, j, k))) <= o.band;
-    if (near) EXPECT_GT(band[b], 0) << "brick " << b << " meets the band but was estimated far";
+    if (near) {
+      EXPECT_GT(band[b], 0) << "brick " << b << " meets the band but was estimated far";
+    }
     kept += band[b] > 0;
   }
   EXPECT_LT(kept, l.size()); // some bricks are far
