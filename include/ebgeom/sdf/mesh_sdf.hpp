@@ -171,6 +171,45 @@ template <int W> using LaneMask = std::conditional_t<(W > 32), std::uint64_t, st
 namespace detail {
 enum class LaneCmp { le, eq };
 
+/// Bytes per register with which `lane_mask` compares W values of T: 64 with AVX-512, 32 with AVX
+/// (W values filling whole registers), else 0 (the plain loop).
+template <class T, int W> constexpr int lane_mask_register_bytes() noexcept {
+  if constexpr (!std::is_same_v<T, float> && !std::is_same_v<T, double>) return 0;
+#if defined(__AVX512F__)
+  if (W * sizeof(T) % 64 == 0) return 64;
+#endif
+#if defined(__AVX__)
+  if (W * sizeof(T) % 32 == 0) return 32;
+#endif
+  return 0;
+}
+
+#if defined(__AVX__)
+/// `lane_mask` of the Bytes / sizeof(T) values at `v`: one compare, into a mask register with
+/// AVX-512, or followed by `movemask` with AVX.
+template <int Bytes, LaneCmp C, class T>
+EBGEOM_FORCE_INLINE std::uint32_t register_mask(const T* v, T b) noexcept {
+  constexpr int pred = C == LaneCmp::le ? _CMP_LE_OQ : _CMP_EQ_OQ;
+#if defined(__AVX512F__)
+  if constexpr (Bytes == 64) {
+    if constexpr (sizeof(T) == 8)
+      return _mm512_cmp_pd_mask(_mm512_loadu_pd(v), _mm512_set1_pd(b), pred);
+    else
+      return _mm512_cmp_ps_mask(_mm512_loadu_ps(v), _mm512_set1_ps(b), pred);
+  }
+#endif
+  if constexpr (Bytes == 32) {
+    if constexpr (sizeof(T) == 8)
+      return unsigned(
+          _mm256_movemask_pd(_mm256_cmp_pd(_mm256_loadu_pd(v), _mm256_set1_pd(b), pred)));
+    else
+      return unsigned(
+          _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(v), _mm256_set1_ps(b), pred)));
+  }
+  return 0; // not reached: `lane_mask_register_bytes` gives 64 or 32 here
+}
+#endif
+
 /// Bit l set where `v[l] <= b` (`LaneCmp::le`) or `v[l] == b` (`eq`); false for NaN lanes, as the
 /// C++ comparisons. GCC 12 builds such a mask from vector compares with shifts, ors and shuffles
 /// (with `lane_min`, 11% of a double ogre query's profile); with AVX-512 one compare gives it (a
@@ -178,42 +217,16 @@ enum class LaneCmp { le, eq };
 /// fallback.
 template <LaneCmp C, class T, int W>
 EBGEOM_FORCE_INLINE LaneMask<W> lane_mask(const T (&v)[W], T b) noexcept {
-#if defined(__AVX__)
-  constexpr bool simd_type = std::is_same_v<T, float> || std::is_same_v<T, double>;
-#endif
-#if defined(__AVX512F__)
-  if constexpr (simd_type && W * sizeof(T) % 64 == 0) {
-    constexpr int n = int(64 / sizeof(T)); // lanes per register
-    constexpr int pred = C == LaneCmp::le ? _CMP_LE_OQ : _CMP_EQ_OQ;
-    LaneMask<W> mask = 0;
-    for (int r = 0; r < W / n; ++r) {
-      std::uint32_t m;
-      if constexpr (sizeof(T) == 8)
-        m = _mm512_cmp_pd_mask(_mm512_loadu_pd(v + r * n), _mm512_set1_pd(b), pred);
-      else
-        m = _mm512_cmp_ps_mask(_mm512_loadu_ps(v + r * n), _mm512_set1_ps(b), pred);
-      mask |= LaneMask<W>(m) << (r * n);
-    }
-    return mask;
-  }
-#endif
-#if defined(__AVX__)
-  if constexpr (simd_type && W * sizeof(T) % 32 == 0) {
-    constexpr int n = int(32 / sizeof(T));
-    constexpr int pred = C == LaneCmp::le ? _CMP_LE_OQ : _CMP_EQ_OQ;
-    LaneMask<W> mask = 0;
-    for (int r = 0; r < W / n; ++r) {
-      int m;
-      if constexpr (sizeof(T) == 8)
-        m = _mm256_movemask_pd(_mm256_cmp_pd(_mm256_loadu_pd(v + r * n), _mm256_set1_pd(b), pred));
-      else
-        m = _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(v + r * n), _mm256_set1_ps(b), pred));
-      mask |= LaneMask<W>(unsigned(m)) << (r * n);
-    }
-    return mask;
-  }
-#endif
   LaneMask<W> mask = 0;
+#if defined(__AVX__)
+  constexpr int bytes = lane_mask_register_bytes<T, W>();
+  if constexpr (bytes > 0) {
+    constexpr int n = bytes / int(sizeof(T)); // lanes per register
+    for (int r = 0; r < W / n; ++r)
+      mask |= LaneMask<W>(register_mask<bytes, C>(v + r * n, b)) << (r * n);
+    return mask;
+  }
+#endif
   for (int l = 0; l < W; ++l) mask |= LaneMask<W>(C == LaneCmp::le ? v[l] <= b : v[l] == b) << l;
   return mask;
 }
