@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // BVH internals (issue #4): build throughput of each builder, memory per triangle, and the
 // traversal variants the seeds list (ordered + farthest-box shrink, ordered, unordered,
 // recursive), all on the same mesh and points in one process. A plain driver.

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 # Optional OpenVDB peer of bench/grid_bench.cpp (meshToVolume), compiled in only when found
 # (Debian: bench/install-openvdb.sh installs libopenvdb-dev). Included from bench/CMakeLists.txt.
 # Found by header and library rather than FindOpenVDB.cmake, which hard-fails on Debian 12 unless

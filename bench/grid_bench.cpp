@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Grid sampling benchmark (issue 5): dense exact grids (tile evaluation, the default, against
 // independent per-point searches, optionally coherent ones, and Embree 3's per-point closest query
 // on the same samples when built with EBGEOM_BENCH_HAVE_EMBREE), the

@@ -1,4 +1,6 @@
 #!/bin/sh
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 # Installs Debian 12's OpenVDB (libopenvdb-dev, with TBB, Blosc and Boost) for the OpenVDB peer of
 # bench/grid_bench.cpp (meshToVolume), only when it is missing. Idempotent.
 # Usage: sh bench/install-openvdb.sh   (as root, or with sudo available)

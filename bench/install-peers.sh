@@ -1,4 +1,6 @@
 #!/bin/sh
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 # Installs the Debian 12 packages of the peer libraries that bench/mesh_sdf_bench.cpp compares
 # against (Embree 3, CGAL), only when one is missing. Idempotent, like scripts/install-deps.sh.
 # Usage: sh bench/install-peers.sh   (as root, or with sudo available)

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Mesh signed-distance queries: ebgeom's MeshSdf against brute force, Embree 3 and CGAL (issue #4).
 // A plain driver (not Google Benchmark): every method answers the same points in the same process.
 //

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 # Strong scaling of ebgeom-mpi (issue #8): the same grid on 1 and then 2 ranks (1 thread each),
 # dense and narrow band, REPS runs each (the median is reported), plus a projection of the time
 # of a 4096^3 grid from the measured cost per sample (dense) and per band brick (narrow band).

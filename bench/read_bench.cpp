@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Mesh reading throughput (MB/s of input) for every reader, from memory and from a (page-cached)
 // file. The input is a generated torus of about EBGEOM_BENCH_TRIANGLES triangles (default 2 M),
 // written once with ebgeom's own writers to $TMPDIR (default /tmp)/ebgeom_read_bench/.

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 # Mesh signed-distance benchmark against the peers (issue #4): installs the peers (Debian), builds
 # the `bench` preset's target and runs it on the shared meshes (absent ones are skipped) in float
 # and double. Output (text and JSON) goes to $OUT_DIR (default build/bench/mesh_sdf_results/).

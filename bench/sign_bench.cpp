@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Cost of the sign modes of SignedMeshSdf (sdf/signed_mesh_sdf.hpp) on real meshes: time per
 // query (one thread) of
 //   pseudonormal   MeshSdf's signed distance (nearest search + pseudonormal sign),

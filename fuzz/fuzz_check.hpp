@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Checks shared by the reader fuzz targets: an error has a code and a message; a mesh has
 // consistent offsets, faces of at least 3 corners, indices in range and finite coordinates.

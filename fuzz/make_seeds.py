@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 """Writes the seed corpus fuzz/corpus/<format>/ (small valid files in every supported spelling).
 Crashers found by fuzzing are added next to them by hand (named crash-<sha1>). Run from fuzz/."""
 import os

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // libFuzzer target for format detection + every reader (`parse_mesh`), and for the writers:
 // whatever reads back must encode and read back to the same mesh (PLY and OBJ keep numbering).
 #include "fuzz_check.hpp"

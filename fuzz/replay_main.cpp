@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Corpus replayer: the main() that replaces libFuzzer when the fuzz targets are built as ordinary
 // test programs. Feeds every file of every directory (and every file) given on the command line
 // to LLVMFuzzerTestOneInput, in sorted order. A crash, sanitizer report or failed check aborts.

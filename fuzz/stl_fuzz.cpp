@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // libFuzzer target for the STL reader (float and double).
 #include "fuzz_check.hpp"
 

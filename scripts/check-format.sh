@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 # Fails when a tracked C++ file is not clang-format clean. `--fix` rewrites them instead.
 set -euo pipefail
 cd "$(dirname "$0")/.."

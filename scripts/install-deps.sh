@@ -1,4 +1,6 @@
 #!/bin/sh
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 # Installs the Debian 12 packages ebgeom's tools and tests need, only when one is missing.
 # Usage: sh scripts/install-deps.sh [extra-package ...]   (as root, or with sudo available)
 set -e

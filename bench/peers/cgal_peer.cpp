@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #include "cgal_peer.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>

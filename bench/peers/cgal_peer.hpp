@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // CGAL peer for bench/mesh_sdf_bench.cpp, compiled in its own translation unit: CGAL::CGAL adds
 // -frounding-math (and CGAL's headers are heavy), which must not reach the code of the other

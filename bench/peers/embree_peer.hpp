@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Embree 3 peer shared by bench/mesh_sdf_bench.cpp and bench/grid_bench.cpp: per-point signed
 // distance through rtcPointQuery (closest triangle in float), then ebgeom's kernel and

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // The EBGeometry seeds' union example: M^3 spheres of radius r on a lattice in [-1, 1]^3, their
 // standard union (every sphere per query) against the accelerated unions. Prints the times per
 // query and the speedups, and checks that every union gives the same value bit for bit (exit 1

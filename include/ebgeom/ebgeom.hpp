@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Umbrella header: includes every public module. Users may include finer headers instead.
@@ -12,3 +14,4 @@
 #include "ebgeom/sdf.hpp"
 #include "ebgeom/sdf/brute_force_dcel_sdf.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
+#include "ebgeom/version.hpp"

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// ebgeom SDFs as Chombo3 `BaseIF` implicit functions (GeometryShop, EBIndexSpace::define).

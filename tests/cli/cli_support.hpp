@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Helpers for the CLI tests: run the ebgeom binary, and read back .npy, .vti, .raw and PNG files
 // with small readers written independently of the tool's writers.

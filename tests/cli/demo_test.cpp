@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `ebgeom demo`: outputs exist, agree with each other and with the library's own evaluation.
 #include <gtest/gtest.h>
 

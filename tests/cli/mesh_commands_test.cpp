@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `ebgeom sdf` on mesh files, `ebgeom query`, `ebgeom convert` and `ebgeom info`, checked against
 // the library's reader and mesh SDF.
 #include <gtest/gtest.h>

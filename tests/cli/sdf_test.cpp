@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `ebgeom sdf`: every node type of the scene format against independent closed forms or the
 // library, every output format read back, --band, --json, and every error path.
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `--sign` for `ebgeom sdf` and `ebgeom query`, the scene key "sign", and `ebgeom info`'s report
 // of what `--sign auto` would pick. The fixture is a unit cube without its top face (open).
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `ebgeom sdf ... -o OUT.npz --band W`: the sparse narrow-band output, read back with the tests'
 // own ZIP and .npy readers (zip_reader.hpp, CRCs recomputed with zlib), against the dense .npy of
 // the same command sample for sample; a grid too large for a dense array; error paths; and the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // A small reader of ZIP archives of stored (uncompressed) entries, with ZIP64, and of the .npy
 // arrays inside a NumPy .npz, written from the ZIP specification (APPNOTE 4.3, 4.5) independently

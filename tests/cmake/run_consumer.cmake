@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 # Configures, builds and runs tests/cmake/consumer twice: via add_subdirectory and via find_package
 # from an install prefix. Fails on the first error.
 function(run)
@@ -19,6 +21,17 @@ run(${CMAKE_COMMAND} -S ${consumer} -B ${WORK_DIR}/by_package -G ${GENERATOR}
     -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DUSE_SUBDIRECTORY=OFF)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/by_package)
 run(${WORK_DIR}/by_package/consumer)
+
+# 1b. a request for a newer version than the installed one must fail (0.x: minor versions differ)
+foreach(too_new 0.2 1.0)
+  execute_process(COMMAND ${CMAKE_COMMAND} -S ${consumer} -B ${WORK_DIR}/too_new_${too_new}
+                  -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix
+                  -DUSE_SUBDIRECTORY=OFF -DREQUEST_VERSION=${too_new}
+                  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT err MATCHES "not compatible|version")
+    message(FATAL_ERROR "find_package(ebgeom ${too_new}) should fail against 0.1.x (rc ${rc})\n${err}")
+  endif()
+endforeach()
 
 # 2. add_subdirectory
 run(${CMAKE_COMMAND} -S ${consumer} -B ${WORK_DIR}/by_subdir -G ${GENERATOR}

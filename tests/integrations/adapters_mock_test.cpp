@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Compiles the AMReX and Chombo adapters against minimal stand-ins of the APIs they use (in
 // mock/, with the real headers' names and signatures), once with SPACEDIM 3 and once with 2, and
 // checks through them: the sign convention (negative = fluid), 2D slicing, copies and clones that

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `mpirun -n P ebgeom-mpi sdf` against the serial `ebgeom sdf`: for 1, 2 and 4 ranks, dense and
 // narrow band, the .npy and .raw files are identical byte for byte and the .pvti pieces,
 // reassembled, hold the serial .vti's values bit for bit. Unreadable inputs and unwritable outputs

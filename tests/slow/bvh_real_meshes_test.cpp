@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // The BVH mesh SDF on the real meshes of ../shared/meshes (skipped when absent): for every arity
 // K = 2, 4, 8, every builder (binned SAH, median, Morton), float and double, `MeshSdf` equals
 // `BruteForceMeshSdf` to the last bit. The brute force (O(n) per point) runs on a subset sized to

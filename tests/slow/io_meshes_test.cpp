@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Every shared mesh reads with the counts its own file declares; igea's triangle strips give a
 // closed, consistently oriented surface; real meshes survive the binary writers. Skips, saying
 // so, when ../shared/meshes is absent.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Mesh structures on the real meshes of ../shared/meshes (skipped when absent): every file
 // validates without crashing and builds both meshes; on the meshes whose signed distance is well
 // defined, the DCEL and triangle-mesh oracles agree and their signs match a winding-number oracle.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Fast winding number (beta = 2) against the exact winding number on the open shared meshes, at
 // random points in each mesh's box grown by 10% per side. The exact sum is O(n) per point, so
 // the bunny (69k triangles) gets 20,000 points and the smaller teapot and suzanne 100,000.

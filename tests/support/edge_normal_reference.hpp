@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // The per-triangle edge pseudonormal table as `make_triangle_mesh` stored it before edge links
 // (one Vec3 per triangle side): the soup's edge table (`edge_pseudonormals`) on polygon sides, the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Distributed grid output of ebgeom-mpi:
 //  - `.pvti`: one VTK ImageData piece per rank (`OUT_<rank>.vti` beside `OUT.pvti`), each piece

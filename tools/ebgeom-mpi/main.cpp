@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // ebgeom-mpi: `ebgeom sdf` distributed over MPI ranks (docs/distributed.md).
 //
 //   mpirun -n P ebgeom-mpi sdf INPUT -o OUT.pvti|.npy|.raw [the options of ebgeom sdf]
@@ -302,9 +304,7 @@ int main(int argc, char** argv) {
 
   CLI::App app{"ebgeom-mpi: ebgeom sdf distributed over MPI ranks (S < 0 inside, S > 0 outside)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "ebgeom-mpi " + std::to_string(EBGEOM_VERSION_MAJOR) + "." +
-                                        std::to_string(EBGEOM_VERSION_MINOR) + "." +
-                                        std::to_string(EBGEOM_VERSION_PATCH));
+  app.set_version_flag("--version", std::string("ebgeom-mpi ") + EBGEOM_VERSION_STRING);
   app.footer("Exit status: 0 success, 1 internal error, 2 usage, 3 input, 4 output, 5 memory "
              "(the same on every rank).");
   auto o = std::make_shared<cli::SdfOptions>();

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // MPI plumbing of ebgeom-mpi: collective error agreement (every rank ends with the same code and
 // one message, never a hang) and small typed collectives.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Subcommand registration: each subcommand file adds its CLI11 sub-app and the function that runs
 // it once the command line is parsed.

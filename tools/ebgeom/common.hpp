@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Shared pieces of the ebgeom command-line tool: exit codes, the error type every subcommand
 // throws, and small helpers.

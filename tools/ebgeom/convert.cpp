@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `ebgeom convert IN OUT`: mesh format conversion.
 #include <cctype>
 #include <cstdio>

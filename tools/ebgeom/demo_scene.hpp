@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // The demo scene: analytic shapes, CSG (sharp and smooth) and a procedurally generated mesh,
 // written in the scene format (docs/scene-format.md) and compiled like any scene file.

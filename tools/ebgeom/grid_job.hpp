@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // The shared grid job of `ebgeom sdf` and `ebgeom demo`: sample an SDF on a dense grid (or a
 // sparse narrow band) with a progress bar, then write the grid and an optional PNG slice.

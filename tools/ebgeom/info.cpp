@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `ebgeom info MESH [--json]`: counts, bounding box and the validation report of a mesh.
 #include "commands.hpp"
 

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // ebgeom command-line tool: entry point, subcommand dispatch and error reporting.
 #include <CLI/CLI.hpp>
 
@@ -14,9 +16,7 @@ int main(int argc, char** argv) {
   using namespace ebgeom::cli;
   CLI::App app{"ebgeom: fast exact signed distance fields (S < 0 inside, S > 0 outside)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "ebgeom " + std::to_string(EBGEOM_VERSION_MAJOR) + "." +
-                                        std::to_string(EBGEOM_VERSION_MINOR) + "." +
-                                        std::to_string(EBGEOM_VERSION_PATCH));
+  app.set_version_flag("--version", std::string("ebgeom ") + EBGEOM_VERSION_STRING);
   app.footer("Exit status: 0 success, 1 internal error, 2 usage, 3 input, 4 output, 5 memory.\n"
              "Run 'ebgeom COMMAND --help' for a command's options and examples.");
   std::vector<Subcommand> subs;

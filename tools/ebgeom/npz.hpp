@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // NumPy `.npz` archives (a ZIP of `.npy` members, stored uncompressed) and the sparse narrow-band
 // output of `ebgeom sdf` written as one: the layout is documented in docs/cli.md ("Sparse output").

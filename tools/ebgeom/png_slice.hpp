@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // PNG slice of a grid (dense, or any with a value per sample): a diverging colour map (blue inside,
 // red outside, white at zero), faint distance bands, the zero level set in black, and a legend

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // `Program<T>`: a scene compiled into a flat post-order tape. Each instruction processes a whole
 // batch of points (one `switch` per instruction per batch of up to 256 points): leaves push a

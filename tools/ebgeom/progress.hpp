@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // A progress bar with ETA on stderr, shown only when enabled (stderr is a terminal and --quiet was
 // not given). update() is thread-safe and throttled to ~10 redraws a second.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `ebgeom query INPUT --points P.npy -o D.npy`: signed distances (and optionally closest points
 // and normals) at arbitrary points.
 #include <cmath>

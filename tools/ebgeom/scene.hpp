@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // JSON scene files (docs/scene-format.md) compiled into a `Program<T>`. Every error names the file
 // and the JSON pointer of the offending value, e.g.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `ebgeom sdf INPUT -o OUT`: an SDF grid from a mesh file or a JSON scene, dense (.vti, .npy,
 // .raw) or a sparse narrow band (.npz: only the 8^3 tiles the band keeps).
 #include <cmath>

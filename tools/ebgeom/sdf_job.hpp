@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // The pieces of `ebgeom sdf` that `ebgeom-mpi sdf` shares: the options, the grid they describe,
 // and loading the input (mesh or scene) into a `Program<T>`. Both tools parse the same command

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `EbFunction<S>`: the logic shared by the AMReX and Chombo adapters (integrations/), kept in

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `build_sah`: the binned SAH build of `build_top_down(SahPartition, LeafSizeStop)`, node for

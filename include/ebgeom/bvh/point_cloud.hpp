@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `PointCloud<T, K>`: nearest-neighbour queries over a point set through a K-wide BVH (a BVH of

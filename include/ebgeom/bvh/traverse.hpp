@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Queries over a `WideBvh`: one generic branch-and-bound nearest search shared by mesh SDFs,

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `WideBvh<T, K>`: the compact, flattened form of a BVH that every query uses. `flatten<K>`

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Compile-time configuration shared by every ebgeom header: version, inlining and assertion
@@ -6,9 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#define EBGEOM_VERSION_MAJOR 0
-#define EBGEOM_VERSION_MINOR 1
-#define EBGEOM_VERSION_PATCH 0
+#include "ebgeom/version.hpp"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define EBGEOM_FORCE_INLINE inline __attribute__((always_inline))

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Error values: `ErrorCode`, `Error`, `ParseError` and the `Exception` thrown by `Result::value()`

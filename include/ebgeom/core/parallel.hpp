@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `parallel_for`: the one place ebgeom starts threads. OpenMP when compiled with it (`_OPENMP`),

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Rotations: `Mat3<T>` (3x3, row-major) and unit `Quaternion<T>`. Angles about a coordinate axis

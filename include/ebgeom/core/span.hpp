@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `Span<T>`: a non-owning view of contiguous elements (a C++17 stand-in for `std::span`).

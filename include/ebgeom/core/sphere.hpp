@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `BoundingSphere<T>`: a ball {center, radius} used as a bounding volume. Built from points with

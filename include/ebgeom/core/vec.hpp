@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Small fixed-size vectors `Vec2<T>` and `Vec3<T>` (plain aggregates, float or double) with the

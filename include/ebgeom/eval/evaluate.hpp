@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `evaluate(sdf, points, out, ExecOptions)`: the batch form of `sdf(p)`, threaded, plus the

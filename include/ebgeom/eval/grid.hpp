@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Dense SDF grids: `sample_grid(sdf, spec, out, GridOptions)` fills a dense array with S at every

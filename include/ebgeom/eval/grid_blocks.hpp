@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// The engine behind `sample_grid`, `sample_grid_box` and `sample_grid_sparse` (no stability

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Grid descriptions: `GridSpec<T>` (box, samples per axis, cell- or node-centred), `GridRange`

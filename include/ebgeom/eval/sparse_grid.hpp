@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Sparse narrow-band grids: `sample_grid_sparse(sdf, spec, opt)` returns a `SparseGrid<T>`, the

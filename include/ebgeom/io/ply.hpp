@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// PLY reader: ASCII, binary little- and big-endian; every scalar type; faces as `face` lists of

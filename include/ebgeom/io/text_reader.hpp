@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `TextReader`: a bounds-checked cursor over text that counts lines, reads whitespace-separated

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Legacy VTK reader: `DATASET POLYDATA`, ASCII or BINARY (big-endian), `POINTS`, `POLYGONS` and

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Mesh writers: STL (binary, ASCII), PLY (binary little-endian, ASCII), OBJ and legacy VTK

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Signed distance from a point to a face, an edge and a vertex of a `HalfEdgeMesh`, exactly as

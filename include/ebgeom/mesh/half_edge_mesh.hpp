@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `HalfEdgeMesh<T>`: an index-based doubly-connected edge list (DCEL) of planar N-sided polygons,

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Face normals and the pseudonormals of Bærentzen & Aanæs (2005), "Signed distance computation

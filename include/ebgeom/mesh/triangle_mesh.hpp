@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `TriangleMesh<T>`: the "pseudo-triangle" fast path. Triangles that carry their face, edge and

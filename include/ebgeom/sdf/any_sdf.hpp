@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `AnySdf<T>`: type erasure for SDFs at batch granularity (STYLE.md example 2). Wraps any SDF

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `BruteForceMeshSdf<T>`: the exact signed distance to a triangle mesh by scanning every triangle.

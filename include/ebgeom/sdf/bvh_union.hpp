@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `BvhUnion<S, K>`: the union of many SDF objects through a K-wide BVH over their bounds (the

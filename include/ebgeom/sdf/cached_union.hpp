@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `CachedUnion<S, K>`: a `BvhUnion` plus an exact *candidate cache*, for unions queried many

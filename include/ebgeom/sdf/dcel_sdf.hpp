@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `DcelSdf<T, K, BV>`: exact signed distance to a half-edge (DCEL) mesh of planar polygons through

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Analytic shapes: small value types satisfying the SDF contract (sdf/concepts.hpp). S < 0

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// `SignedMeshSdf<T, K, W>`: the exact distance of `MeshSdf` with a selectable sign, for meshes

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
 /// Generalized winding numbers of triangle meshes (Jacobson, Kavan & Sorkine-Hornung 2013):

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // ebgeom + AMReX EB2: reads a surface mesh (STL, PLY, OBJ or VTK; a generated icosphere when no
 // file is given), builds its signed distance once, builds the embedded boundary with EB2 and
 // writes a plotfile with the volume fraction and the EB implicit function at cell centres.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // ebgeom + Chombo3 EB: reads a surface mesh (STL, PLY, OBJ or VTK; a generated icosphere when no
 // file is given), builds its signed distance once, builds the EB index space with GeometryShop +
 // EBIndexSpace::define, and writes the implicit function at cell centres (HDF5 builds).

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+# SPDX-FileCopyrightText: 2026 The ebgeom authors
 """Writes the malformed (and tolerated) mesh fixtures of tests/data/io and their manifest.
 
 Each manifest line: <file> <expected ErrorCode name or ok> <line or -> <byte offset or ->.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // EbFunction under concurrent calls: many threads on one object and on per-thread copies give
 // exactly the serial values (bit for bit), for a mesh SDF and an analytic CSG scene. Run under
 // TSan (EBGEOM_SANITIZE=thread) to check for races, and ASan for lifetime errors.

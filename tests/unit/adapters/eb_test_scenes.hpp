@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Geometries and helpers shared by the adapter tests (tests/unit/adapters and, through a relative
 // include, tests/integrations): a mesh SDF, an analytic CSG scene, an SDF that counts its own

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Brick decomposition: layouts cover the grid, RCB parts tile it exactly (every sample in one
 // part), balance follows the weights, the work estimate is conservative, and per-part sampling
 // reassembles the serial grid bit for bit.

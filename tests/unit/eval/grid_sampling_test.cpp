@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Dense (coherent), narrow-band, sub-box and sparse grid sampling against per-point evaluation,
 // on mesh SDFs (with a bounded query) and analytic SDFs (exact and bound kinds).
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Tile evaluation of mesh SDFs (`MeshSdf::eval_lattice`, `GridSearch::tile`, the default):
 // bit for bit per-point evaluation, with partial tiles, 1 and 2 threads, sub-boxes, far tiles
 // whose candidate lists split, and through `SignedMeshSdf`.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Helpers for the io tests: canonical triangle lists (to compare meshes whose vertex numbering
 // differs), file loading and little binary builders.

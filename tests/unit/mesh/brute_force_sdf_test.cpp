@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
 
 #include <gtest/gtest.h>

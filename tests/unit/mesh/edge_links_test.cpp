@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // TriangleMesh stores a link per triangle side instead of three edge pseudonormals; edge_normal()
 // must give back, bit for bit, the table make_triangle_mesh stored before (rebuilt here the old
 // way, tests/support/edge_normal_reference.hpp), on every kind of edge: two polygons, fan and

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Independent references for mesh tests: a double-precision closest point on a triangle
 // (barycentric projection by Cramer's rule, else clamped segments), the unsigned distance to a

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Independent references for the sdf tests: signed distances computed without the library's
 // formulas (support functions of convex bodies maximised numerically, sampled curves refined by

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // The dirty-mesh suite: what each sign mode does on imperfect meshes. Every expectation here is
 // listed in docs/sign.md ("Outcomes on imperfect meshes"); keep the two in step.
 #include <gtest/gtest.h>

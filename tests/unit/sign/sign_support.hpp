@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Mesh surgery for the sign tests: caps removed or flipped, faces duplicated, shells combined.
 

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // SignedMeshSdf on watertight meshes: every signed mode agrees with pseudonormal away from the
 // surface, the magnitude is MeshSdf's to the last bit, and `automatic` picks pseudonormal.
 #include "ebgeom/sdf/signed_mesh_sdf.hpp"

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Exact and fast generalized winding numbers (sdf/winding.hpp).
 #include "ebgeom/sdf/winding.hpp"
 
