@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 // BVH internals (issue #4): build throughput of each builder, memory per triangle, and the
-// traversal variants the seeds list (ordered + farthest-box shrink, ordered, unordered,
+// traversal variants EBGeometry lists (ordered + farthest-box shrink, ordered, unordered,
 // recursive), all on the same mesh and points in one process. A plain driver.
 //
 //   cmake --preset bench && cmake --build --preset bench --target ebgeom_bench_bvh_bench

@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-// The EBGeometry seeds' union example: M^3 spheres of radius r on a lattice in [-1, 1]^3, their
+// EBGeometry's union example: M^3 spheres of radius r on a lattice in [-1, 1]^3, their
 // standard union (every sphere per query) against the accelerated unions. Prints the times per
 // query and the speedups, and checks that every union gives the same value bit for bit (exit 1
 // otherwise).
 //
-// Two standard unions are timed: the seeds' design (a vector of shared_ptr to a polymorphic SDF
-// base, one virtual call per sphere per query: EBGeometry's `Union<T>`), which the seeds' 7,580x
+// Two standard unions are timed: EBGeometry's design (a vector of shared_ptr to a polymorphic SDF
+// base, one virtual call per sphere per query: EBGeometry's `Union<T>`), which EBGeometry's 7,580x
 // figure is measured against, and ebgeom's own inlined linear loop over a vector of value-type
 // spheres (no virtual call), a faster baseline. Two accelerated ones: `BvhUnion` (a nearest search
 // per query) and `CachedUnion` (a BvhUnion plus a grid of candidate lists over [-1, 1]^3), the
 // latter both one point at a time and through its batch `eval` (which prefetches).
 //
-// Every union is timed on the same `samples` random points (the seeds' protocol; repetitions
+// Every union is timed on the same `samples` random points (EBGeometry's protocol; repetitions
 // reuse them, so a fast union's working set stays in the CPU caches after the first; the
 // accelerated unions, whose runs are short, are repeated 20 times as often), and the accelerated
 // ones also on `fresh` other random points, so many that their cells, lists and spheres come
@@ -42,7 +42,7 @@ using ebgeom::Vec3;
 
 using Ball = ebgeom::Sphere<T>; // exact
 
-/// The seeds' SDF interface: a polymorphic base held through shared_ptr.
+/// EBGeometry's SDF interface: a polymorphic base held through shared_ptr.
 struct SignedDistanceFunction {
   virtual ~SignedDistanceFunction() = default;
   virtual T signedDistance(const Vec3<T>& p) const noexcept = 0;
@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
              radius});
   std::printf("%zu spheres of radius %g, delta = %g\n", spheres.size(), radius, delta);
 
-  // The seeds' standard union: shared_ptr<SDF> objects, one virtual call per sphere.
+  // EBGeometry's standard union: shared_ptr<SDF> objects, one virtual call per sphere.
   std::vector<std::shared_ptr<const SignedDistanceFunction>> poly;
   for (const Ball& b : spheres) poly.push_back(std::make_shared<const SphereSdf>(b));
   auto seeds_union = [&](const std::vector<Vec3<T>>& pts, std::vector<T>& out) {
@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
 
   const auto pts = random_points(std::size_t(samples), 2024);
   std::vector<T> v_seeds, v_linear, v_bvh, v_one, v_batch;
-  const double t_seeds = per_query(reps, pts, v_seeds, seeds_union);
+  const double t_virtual = per_query(reps, pts, v_seeds, seeds_union);
   const double t_linear = per_query(reps, pts, v_linear, linear_union);
   const double t_bvh = per_query(20 * reps, pts, v_bvh, bvh_union);
   const double t_one = per_query(20 * reps, pts, v_one, cached_one);
@@ -174,12 +174,12 @@ int main(int argc, char** argv) {
 
   std::printf(
       "per query (ms), medians of %d runs (%d on the same points for the accelerated "
-      "unions),\nand the speedups vs the seeds-style union and vs the inlined linear union:\n",
+      "unions),\nand the speedups vs the EBGeometry-style union and vs the inlined linear union:\n",
       reps, 20 * reps);
-  std::printf("  seeds-style union (virtual call per sphere): %.6f\n", t_seeds * 1e3);
+  std::printf("  EBGeometry-style union (virtual call per sphere): %.6f\n", t_virtual * 1e3);
   std::printf("  inlined linear union:                        %.6f\n", t_linear * 1e3);
   auto row = [&](const char* name, double t) {
-    std::printf("  %-44s %.6f  %8.0fx  %8.0fx\n", name, t * 1e3, t_seeds / t, t_linear / t);
+    std::printf("  %-44s %.6f  %8.0fx  %8.0fx\n", name, t * 1e3, t_virtual / t, t_linear / t);
   };
   std::printf(" on the same %d points:\n", samples);
   row("BVH union", t_bvh);

@@ -10,7 +10,7 @@
 /// *partition* that splits a node's primitives into 2..16 parts. Ready ones:
 ///  - `SahPartition`: binned surface-area heuristic (binary splits; the default);
 ///  - `MedianPartition`: split at the median centroid along the longest axis (binary);
-///  - `ChunkPartition<K>`: the EBGeometry seeds' partitioner: sort centroids along the longest
+///  - `ChunkPartition<K>`: EBGeometry's partitioner: sort centroids along the longest
 ///    axis of their box and cut into K equal chunks (K-ary);
 ///  - `LeafSizeStop`: leaf when a node holds at most `max_leaf_size` primitives.
 /// `build_sah` makes `build_top_down(SahPartition, LeafSizeStop)`'s tree, faster (it is what

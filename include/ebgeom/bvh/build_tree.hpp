@@ -182,7 +182,7 @@ struct MedianPartition {
   }
 };
 
-/// The seeds' partitioner: sort centroids along the longest axis of their box, cut into `K` chunks
+/// EBGeometry's partitioner: sort centroids along the longest axis of their box, cut into `K` chunks
 /// of (nearly) equal size. O(n log n) per node.
 template <int K> struct ChunkPartition {
   static_assert(K >= 2 && K <= max_build_children, "ChunkPartition<K> needs 2 <= K <= 16");

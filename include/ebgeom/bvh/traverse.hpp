@@ -12,7 +12,7 @@
 ///   every primitive lies inside its box and distances are measured to the primitive itself).
 ///   A caller-supplied initial `best2` gives narrow-band queries.
 /// - `nearest_unordered`, `nearest_recursive` : the same search without child ordering / with
-///   recursion, kept for comparison in bench/ (the seeds list them).
+///   recursion, kept for comparison in bench/ (EBGeometry lists them).
 /// - `for_each_leaf_if` : visits every leaf whose path of boxes satisfies a predicate;
 ///   `for_each_overlapping` (boxes overlapping a region) and `for_each_within` (boxes within a
 ///   radius of a point) are built on it.
@@ -280,7 +280,7 @@ void nearest_recursive_at(const WideBvh<T, K, BV>& bvh, const ChildRef ref, cons
 }
 } // namespace detail
 
-/// `nearest` by recursion, nearest child first (the seeds' recursive variant; for bench/).
+/// `nearest` by recursion, nearest child first (EBGeometry's recursive variant; for bench/).
 template <class T, int K, class BV, class LeafFn>
 void nearest_recursive(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2,
                        LeafFn&& leaf) noexcept {

@@ -262,7 +262,7 @@ template <class T, int K, class BV> struct Flattener {
 };
 } // namespace detail
 
-/// Collapses a builder tree into the compact K-wide form with bounding volumes `BV` (the seeds'
+/// Collapses a builder tree into the compact K-wide form with bounding volumes `BV` (EBGeometry's
 /// pluggable bounding volumes): `leaf_bv(first, count)` gives the volume of leaf slots
 /// [first, first + count); inner volumes are `merge`s of their children's. O(nodes · K).
 template <int K, class BV, class T, class LeafBv>

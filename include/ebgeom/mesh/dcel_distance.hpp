@@ -3,7 +3,7 @@
 #pragma once
 /// \file
 /// Signed distance from a point to a face, an edge and a vertex of a `HalfEdgeMesh`, exactly as
-/// the seeds' three cases (EBGeometry "DCEL mesh structure", §Signed distance), with the sign
+/// EBGeometry's three cases (EBGeometry "DCEL mesh structure", §Signed distance), with the sign
 /// from the face normal or the edge/vertex pseudonormal (Bærentzen & Aanæs 2005) and the
 /// magnitude always the Euclidean distance to the closest point.
 

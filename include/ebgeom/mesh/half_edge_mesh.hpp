@@ -3,7 +3,7 @@
 #pragma once
 /// \file
 /// `HalfEdgeMesh<T>`: an index-based doubly-connected edge list (DCEL) of planar N-sided polygons,
-/// as in the seeds' "DCEL mesh structure" chapter, with cached face data (normal, centroid, area,
+/// as in EBGeometry's "DCEL mesh structure" chapter, with cached face data (normal, centroid, area,
 /// 2D projection) and the pseudonormals needed for signed distances.
 
 #include <algorithm>

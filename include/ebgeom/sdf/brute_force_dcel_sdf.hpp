@@ -3,7 +3,7 @@
 #pragma once
 /// \file
 /// `BruteForceDcelSdf<T>`: the exact signed distance to a half-edge (DCEL) mesh of planar polygons
-/// by scanning every face with the seeds' face/edge/vertex cases. O(faces) per query; the
+/// by scanning every face with EBGeometry's face/edge/vertex cases. O(faces) per query; the
 /// polygon-mesh oracle (non-convex planar polygons included).
 
 #include <cstddef>

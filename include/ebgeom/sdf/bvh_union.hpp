@@ -3,7 +3,7 @@
 #pragma once
 /// \file
 /// `BvhUnion<S, K>`: the union of many SDF objects through a K-wide BVH over their bounds (the
-/// EBGeometry seeds' "fast union"): O(log N) per query instead of O(N), and the same value as the
+/// EBGeometry's "fast union"): O(log N) per query instead of O(N), and the same value as the
 /// linear union `min_i S_i(p)`.
 ///
 /// Pruning is valid when every object satisfies S(p) >= dist(p, S.bounds()) outside its box: true
@@ -101,7 +101,7 @@ template <class S, int K = 4> class BvhUnion {
     for (const S& s : unbounded_) best = std::min(best, s(p));
     if constexpr (prunes) {
       T best2 = key(best);
-      // (The farthest-box shrink `nearest<true>` is valid here too, but on the seeds' lattice it
+      // (The farthest-box shrink `nearest<true>` is valid here too, but on EBGeometry's lattice it
       // costs more node work than it saves: measured with callgrind, 3,034 vs 2,158 instructions
       // per query.)
       bvh::nearest(bvh_, p, best2, [&](std::uint32_t first, std::uint32_t count, T& b2) {

@@ -4,7 +4,7 @@
 /// \file
 /// `DcelSdf<T, K, BV>`: exact signed distance to a half-edge (DCEL) mesh of planar polygons through
 /// a K-wide BVH over its faces, with boxes (`Aabb<T>`, default) or spheres (`BoundingSphere<T>`)
-/// as bounding volumes, as in the seeds' `FastMeshSDF`. Equal to `BruteForceDcelSdf` to the last
+/// as bounding volumes, as in EBGeometry's `FastMeshSDF`. Equal to `BruteForceDcelSdf` to the last
 /// bit, reported face included (same face kernel `signed_distance_to_face`; exact ties go to the
 /// lowest face index in both).
 
@@ -26,7 +26,7 @@
 
 namespace ebgeom {
 
-/// BVH-accelerated DCEL mesh SDF. Sign: the seeds' face/edge/vertex pseudonormal cases, exact for
+/// BVH-accelerated DCEL mesh SDF. Sign: EBGeometry's face/edge/vertex pseudonormal cases, exact for
 /// closed, manifold, consistently oriented meshes. Immutable; concurrent queries are safe.
 template <class T, int K = 4, class BV = Aabb<T>> class DcelSdf {
  public:

@@ -15,7 +15,7 @@ template <class T> struct SoftBall : Sphere<T> { static constexpr SdfKind kind =
 
 template <class T> bool same_bits(T a, T b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
 
-/// The seeds' lattice: M^3 spheres of radius r in [-1, 1]^3.
+/// EBGeometry's lattice: M^3 spheres of radius r in [-1, 1]^3.
 template <class T> std::vector<Sphere<T>> lattice(int M, T r) {
   const T delta = (T(2) - T(2) * T(M) * r) / T(M + 1);
   std::vector<Sphere<T>> v;
