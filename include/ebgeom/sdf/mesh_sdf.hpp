@@ -49,20 +49,13 @@ template <class T, int W> struct TriBlock {
   }
 };
 
-/// Default block width, chosen by the instruction set the code is compiled for (measured on the
-/// bunny and the ogre, uniform points, docs/performance.md "Block width"): with AVX-512, 16 floats
-/// or 8 doubles (one 512-bit register; +11% and +25% queries per second over 8 and 4); with AVX,
-/// 8 floats or 8 doubles (+5-10% over 4 for double); otherwise 8 floats or 4 doubles. Translation
-/// units compiled for different instruction sets therefore get different default `MeshSdf` types
-/// (a link error, never a silent mismatch, if one is passed between them); spell out W to share
-/// one.
-#if defined(__AVX512F__)
+/// Default block width: 16 floats or 8 doubles (one 512-bit register), whatever the instruction
+/// set a translation unit is compiled for. A type's layout must not follow compile flags: two
+/// translation units built with different `-m` flags share `MeshSdf<T>` (and any user struct that
+/// holds one), and a width that changed with the flags would give them different layouts under
+/// one name, which links cleanly and reads garbage. Narrower code paths loop over the lanes
+/// (docs/performance.md "Block width" has the measurements).
 template <class T> inline constexpr int default_block_width = sizeof(T) == 4 ? 16 : 8;
-#elif defined(__AVX__)
-template <class T> inline constexpr int default_block_width = 8;
-#else
-template <class T> inline constexpr int default_block_width = sizeof(T) == 4 ? 8 : 4;
-#endif
 
 /// Squared distance from `p` to each triangle of a block. Performs exactly the operations of
 /// `closest_point_triangle` per lane (same order, same selects), so `d2[l]` equals its
