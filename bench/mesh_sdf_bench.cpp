@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-// Mesh signed-distance queries: ebgeom's MeshSdf against brute force, Embree 3 and CGAL (issue #4).
+// Mesh signed-distance queries: ebgeom's MeshSdf against brute force, Embree 3, CGAL and fcpw.
 // A plain driver (not Google Benchmark): every method answers the same points in the same process.
 //
 //   sh bench/install-peers.sh     (Debian: libembree-dev, libcgal-dev; peers are optional)
-//   cmake --preset bench && cmake --build --preset bench --target ebgeom_bench_mesh_sdf_bench
+//   fcpw=$(sh bench/fetch-fcpw.sh)  (fcpw from ../shared/peers, optional)
+//   cmake --preset bench -DEBGEOM_FCPW_DIR=$fcpw
+//   cmake --build --preset bench --target ebgeom_bench_mesh_sdf_bench
 //   build/bench/bench/ebgeom_bench_mesh_sdf_bench MESH | --generate N
 //       [--points N=1000000] [--reps R=5] [--precision float|double|both] [--threads T=2]
 //       [--check M=20000] [--cgal-points K=100000] [--json] [--json-file PATH]
@@ -49,6 +51,9 @@ using ebgeom_bench::EmbreePeer;
 #endif
 #ifdef EBGEOM_BENCH_HAVE_CGAL
 #include "peers/cgal_peer.hpp"
+#endif
+#ifdef EBGEOM_BENCH_HAVE_FCPW
+#include "peers/fcpw_peer.hpp"
 #endif
 #ifdef EBGEOM_BENCH_HAVE_JSON
 #include <nlohmann/json.hpp>
@@ -282,7 +287,7 @@ template <class T> PrecisionRun run_precision(const Options& o) {
   // Every method is built first; then the timed passes are interleaved (run r of every method,
   // then run r + 1), so that load from other processes hits all methods alike.
   std::vector<Pass> passes;
-  std::vector<std::vector<T>> outs(4); // one per method; never resized below (passes hold refs)
+  std::vector<std::vector<T>> outs(5); // one per method; never resized below (passes hold refs)
   std::vector<T>* out_ref = nullptr;   // the reference's output (ebgeom when built in)
   std::string ref_name;
 
@@ -435,6 +440,43 @@ template <class T> PrecisionRun run_precision(const Options& o) {
   }
 #endif
 
+#ifdef EBGEOM_BENCH_HAVE_FCPW
+  std::unique_ptr<ebgeom_bench::FcpwPeer> fcpw;
+  {
+    Row row;
+    row.method = "fcpw";
+    row.precision = type_name<T>();
+    row.compute = "float (SIMD width " + std::to_string(ebgeom_bench::FcpwPeer::simd_width()) + ")";
+    std::vector<float> xyz(3 * mesh.vertex_count());
+    for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+      xyz[3 * i] = float(mesh.vertices[i].x);
+      xyz[3 * i + 1] = float(mesh.vertices[i].y);
+      xyz[3 * i + 2] = float(mesh.vertices[i].z);
+    }
+    std::vector<double> builds;
+    std::size_t bytes = 0;
+    for (int r = 0; r < o.reps; ++r) {
+      fcpw.reset();
+      const std::size_t before = heap_in_use();
+      t0 = Clock::now();
+      fcpw = std::make_unique<ebgeom_bench::FcpwPeer>(
+          xyz.data(), mesh.vertex_count(), mesh.triangles.data()->data(), mesh.triangle_count());
+      builds.push_back(ms_since(t0));
+      bytes = heap_in_use() - before;
+    }
+    row.build_ms = median(builds);
+    row.memory = bytes;
+    row.memory_note = "heap growth over the build (fcpw scene, normals and vectorised BVH)";
+    row.queries = o.points;
+    if (sizeof(T) != 4) row.note = "fcpw computes in float";
+    const ebgeom_bench::FcpwPeer* f = fcpw.get();
+    passes.push_back(make_pass(
+        [f](const Vec3<T>& p) { return T(f->signed_distance(float(p.x), float(p.y), float(p.z))); },
+        pts, o.points, outs[4]));
+    run.rows.push_back(std::move(row));
+  }
+#endif
+
   // Timed passes, interleaved: in each of R rounds, every method runs once on one thread and then
   // once on T threads, so a method's two passes of a round see about the same load (the paired
   // thread scaling) and the methods of a round too (the paired ratios).
@@ -452,8 +494,9 @@ template <class T> PrecisionRun run_precision(const Options& o) {
     const std::vector<T>& out = outs[row.method == "brute"    ? 1
                                      : row.method == "embree" ? 2
                                      : row.method == "cgal"   ? 3
+                                     : row.method == "fcpw"   ? 4
                                                               : 0];
-    const bool float_peer = row.method == "embree";
+    const bool float_peer = row.method == "embree" || row.method == "fcpw";
     check(row, ref_name, *out_ref, out, m, float_peer ? 1e-5 : rel_t,
           float_peer ? floor_f : floor_t);
     // Where the signs differ, which one does the generalized winding number (Jacobson et al.

@@ -21,4 +21,4 @@ struct Version {
 inline constexpr Version version{EBGEOM_VERSION_MAJOR, EBGEOM_VERSION_MINOR, EBGEOM_VERSION_PATCH};
 inline constexpr const char* version_string = EBGEOM_VERSION_STRING;
 
-}  // namespace ebgeom
+} // namespace ebgeom

@@ -182,8 +182,8 @@ struct MedianPartition {
   }
 };
 
-/// EBGeometry's partitioner: sort centroids along the longest axis of their box, cut into `K` chunks
-/// of (nearly) equal size. O(n log n) per node.
+/// EBGeometry's partitioner: sort centroids along the longest axis of their box, cut into `K`
+/// chunks of (nearly) equal size. O(n log n) per node.
 template <int K> struct ChunkPartition {
   static_assert(K >= 2 && K <= max_build_children, "ChunkPartition<K> needs 2 <= K <= 16");
   template <class T>
