@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
   // EBGeometry's standard union: shared_ptr<SDF> objects, one virtual call per sphere.
   std::vector<std::shared_ptr<const SignedDistanceFunction>> poly;
   for (const Ball& b : spheres) poly.push_back(std::make_shared<const SphereSdf>(b));
-  auto seeds_union = [&](const std::vector<Vec3<T>>& pts, std::vector<T>& out) {
+  auto ebgeometry_union = [&](const std::vector<Vec3<T>>& pts, std::vector<T>& out) {
     for (std::size_t i = 0; i < pts.size(); ++i) {
       T d = std::numeric_limits<T>::infinity();
       for (const auto& s : poly) d = std::min(d, s->signedDistance(pts[i]));
@@ -162,14 +162,14 @@ int main(int argc, char** argv) {
   };
 
   const auto pts = random_points(std::size_t(samples), 2024);
-  std::vector<T> v_seeds, v_linear, v_bvh, v_one, v_batch;
-  const double t_virtual = per_query(reps, pts, v_seeds, seeds_union);
+  std::vector<T> v_ebgeometry, v_linear, v_bvh, v_one, v_batch;
+  const double t_virtual = per_query(reps, pts, v_ebgeometry, ebgeometry_union);
   const double t_linear = per_query(reps, pts, v_linear, linear_union);
   const double t_bvh = per_query(20 * reps, pts, v_bvh, bvh_union);
   const double t_one = per_query(20 * reps, pts, v_one, cached_one);
   const double t_batch = per_query(20 * reps, pts, v_batch, cached_batch);
-  std::size_t bad = mismatches(v_seeds, v_linear) + mismatches(v_seeds, v_bvh) +
-                    mismatches(v_seeds, v_one) + mismatches(v_seeds, v_batch);
+  std::size_t bad = mismatches(v_ebgeometry, v_linear) + mismatches(v_ebgeometry, v_bvh) +
+                    mismatches(v_ebgeometry, v_one) + mismatches(v_ebgeometry, v_batch);
   std::size_t checked = pts.size();
 
   std::printf(

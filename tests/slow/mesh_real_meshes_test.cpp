@@ -101,6 +101,8 @@ TYPED_TEST(RealMeshEdgeLinks, EqualTheEdgeNormalTableBitForBit) {
     if (e.is_regular_file() && (ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".vtk"))
       files.push_back(e.path());
   }
+  if (files.empty())
+    GTEST_SKIP() << "no .obj/.ply/.stl/.vtk mesh under " << dir << " (nothing to compare)";
   std::sort(files.begin(), files.end());
   std::size_t sides = 0;
   for (const fs::path& f : files) {

@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // Shared pieces of the ebgeom command-line tool: exit codes, the error type every subcommand
-// throws, and small helpers.
+// throws, and small utilities.
 
 #include <cstddef>
 #include <cstdint>

@@ -33,22 +33,13 @@
 #include "ebgeom/bvh/build_tree.hpp"
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
+#include "ebgeom/core/morton.hpp"
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
 
 namespace ebgeom::bvh {
 
 namespace detail {
-/// Spreads the low 21 bits of `v` to every third bit.
-inline std::uint64_t spread_bits_21(std::uint64_t v) noexcept {
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
 /// Index of the highest set bit of `v` (v != 0).
 inline int highest_bit(std::uint64_t v) noexcept {
   int b = 0;
@@ -66,8 +57,7 @@ template <class T> std::uint64_t morton_code(const Vec3<T>& p, const Aabb<T>& bo
     const double c = std::min(std::max(double(u) * 2097152.0, 0.0), 2097151.0);
     q[a] = std::uint64_t(c);
   }
-  return detail::spread_bits_21(q[0]) | detail::spread_bits_21(q[1]) << 1 |
-         detail::spread_bits_21(q[2]) << 2;
+  return morton_encode(q[0], q[1], q[2]);
 }
 
 namespace detail {

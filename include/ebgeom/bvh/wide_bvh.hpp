@@ -15,8 +15,8 @@
 
 #include "ebgeom/bvh/build.hpp"
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/bounding_sphere.hpp"
 #include "ebgeom/core/config.hpp"
-#include "ebgeom/core/sphere.hpp"
 #include "ebgeom/core/vec.hpp"
 
 namespace ebgeom::bvh {

@@ -19,6 +19,7 @@
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/core/error.hpp"
+#include "ebgeom/core/morton.hpp"
 #include "ebgeom/core/parallel.hpp"
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/vec.hpp"
@@ -185,18 +186,9 @@ struct GridOptions {
 };
 
 namespace detail {
-inline std::uint64_t spread_bits3(std::uint64_t v) noexcept {
-  v &= 0x1fffff; // 21 bits
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
-/// 63-bit Morton code of three 21-bit coordinates (x in the lowest bit).
+/// 63-bit Morton code of three 21-bit coordinates (x in the lowest bit); `morton_encode`.
 inline std::uint64_t morton3(std::uint32_t x, std::uint32_t y, std::uint32_t z) noexcept {
-  return spread_bits3(x) | spread_bits3(y) << 1 | spread_bits3(z) << 2;
+  return morton_encode(x, y, z);
 }
 } // namespace detail
 

@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
-/// Helpers that build `ParseError`s with a location, shared by `ByteReader`, `TextReader` and the
+/// Functions that build `ParseError`s with a location, shared by `ByteReader`, `TextReader` and the
 /// format readers.
 
 #include <cstdint>

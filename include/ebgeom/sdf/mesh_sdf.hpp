@@ -34,8 +34,8 @@
 #include "ebgeom/geom/closest_point_triangle.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
-#include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
 #include "ebgeom/sdf/concepts.hpp"
+#include "ebgeom/sdf/mesh_closest_point.hpp"
 
 namespace ebgeom {
 /// W triangles, structure of arrays: 9·W scalars (W = 8 float: 288 B; W = 4 double: 288 B).

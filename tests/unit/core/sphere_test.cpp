@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-#include "ebgeom/core/sphere.hpp"
+#include "ebgeom/core/bounding_sphere.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,15 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include "../mesh/mesh_reference.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
-#include "mesh_reference.hpp"
 #include "test_support.hpp"
 
 using namespace ebgeom;
 
-template <class T> class DcelSdfTest : public ::testing::Test {};
-TYPED_TEST_SUITE(DcelSdfTest, test::FloatTypes);
+template <class T> class BruteForceDcelSdfTest : public ::testing::Test {};
+TYPED_TEST_SUITE(BruteForceDcelSdfTest, test::FloatTypes);
 
 namespace {
 template <class T> double tolerance(double d) {
@@ -23,12 +23,19 @@ constexpr InsideTest all_tests[] = {InsideTest::crossing_number, InsideTest::win
                                     InsideTest::subtended_angle};
 } // namespace
 
-TYPED_TEST(DcelSdfTest, SatisfiesTheSdfContract) {
-  static_assert(is_sdf_v<BruteForceDcelSdf<TypeParam>>);
-  static_assert(BruteForceDcelSdf<TypeParam>::kind == SdfKind::exact);
+TYPED_TEST(BruteForceDcelSdfTest, SatisfiesTheSdfContract) {
+  using T = TypeParam;
+  using S = BruteForceDcelSdf<T>;
+  static_assert(is_sdf_v<S>);
+  static_assert(S::kind == SdfKind::exact);
+  // and at run time: the contract's members give the cube's box and distances
+  const S sdf = S::build(make_cube<T>(1).value()).value();
+  EXPECT_EQ(sdf.bounds(), Aabb<T>::of({-1, -1, -1}, {1, 1, 1}));
+  EXPECT_EQ(sdf(Vec3<T>::zero()), T(-1));
+  EXPECT_EQ(sdf(Vec3<T>{3, 0, 0}), T(2));
 }
 
-TYPED_TEST(DcelSdfTest, CubeOfQuadsEqualsClosedFormWithEveryInsideTest) {
+TYPED_TEST(BruteForceDcelSdfTest, CubeOfQuadsEqualsClosedFormWithEveryInsideTest) {
   using T = TypeParam;
   const auto soup = make_cube<T>(T(0.75)).value();
   for (InsideTest it : all_tests) {
@@ -40,7 +47,7 @@ TYPED_TEST(DcelSdfTest, CubeOfQuadsEqualsClosedFormWithEveryInsideTest) {
   }
 }
 
-TYPED_TEST(DcelSdfTest, FeaturesAndIndices) {
+TYPED_TEST(BruteForceDcelSdfTest, FeaturesAndIndices) {
   using T = TypeParam;
   const auto soup = make_cube<T>(1).value();
   const auto sdf = BruteForceDcelSdf<T>::build(soup).value();
@@ -69,7 +76,7 @@ TYPED_TEST(DcelSdfTest, FeaturesAndIndices) {
   EXPECT_NEAR(double(sdf({1, 1, 1})), 0.0, tolerance<T>(1));
 }
 
-TYPED_TEST(DcelSdfTest, NonConvexPolygonsMatchOracleWithEveryInsideTest) {
+TYPED_TEST(BruteForceDcelSdfTest, NonConvexPolygonsMatchOracleWithEveryInsideTest) {
   using T = TypeParam;
   const auto soup = test::l_prism<T>();
   for (InsideTest it : all_tests) {
@@ -95,7 +102,7 @@ TYPED_TEST(DcelSdfTest, NonConvexPolygonsMatchOracleWithEveryInsideTest) {
   }
 }
 
-TYPED_TEST(DcelSdfTest, OctahedronAndTetrahedronEqualClosedForms) {
+TYPED_TEST(BruteForceDcelSdfTest, OctahedronAndTetrahedronEqualClosedForms) {
   using T = TypeParam;
   const auto oct = BruteForceDcelSdf<T>::build(make_octahedron<T>(1).value()).value();
   const auto tet_soup = make_tetrahedron<T>(1).value();
@@ -109,7 +116,7 @@ TYPED_TEST(DcelSdfTest, OctahedronAndTetrahedronEqualClosedForms) {
   EXPECT_NEAR(double(tet({0, 0, 0})), -1.0 / 3, tolerance<T>(1));
 }
 
-TYPED_TEST(DcelSdfTest, DcelAndTriangleMeshAgree) {
+TYPED_TEST(BruteForceDcelSdfTest, DcelAndTriangleMeshAgree) {
   using T = TypeParam;
   const std::vector<PolygonSoup<T>> soups = {make_icosphere<T>(2, T(1.2)).value(),
                                              make_torus<T>(T(1.5), T(0.5), 24, 12).value(),
@@ -126,7 +133,7 @@ TYPED_TEST(DcelSdfTest, DcelAndTriangleMeshAgree) {
   }
 }
 
-TYPED_TEST(DcelSdfTest, TorusTracksTheAnalyticTorus) {
+TYPED_TEST(BruteForceDcelSdfTest, TorusTracksTheAnalyticTorus) {
   using T = TypeParam;
   const double R = 2, r = 0.5;
   const int nu = 96, nv = 48;
@@ -141,7 +148,7 @@ TYPED_TEST(DcelSdfTest, TorusTracksTheAnalyticTorus) {
   }
 }
 
-TYPED_TEST(DcelSdfTest, NonStarPolygonIsEarClippedInTheTriangleMesh) {
+TYPED_TEST(BruteForceDcelSdfTest, NonStarPolygonIsEarClippedInTheTriangleMesh) {
   using T = TypeParam;
   // The L prism with its bottom face starting at (0, 2): the fan from there leaves the L, so the
   // triangle mesh must ear-clip it to agree with the DCEL (which tests the polygon directly).

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../mesh/mesh_reference.hpp"
 #include "ebgeom/mesh/generate.hpp"
-#include "mesh_reference.hpp"
 #include "test_support.hpp"
 
 using namespace ebgeom;
