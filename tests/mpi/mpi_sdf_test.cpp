@@ -237,6 +237,28 @@ TEST_P(MpiErrors, UnwritableOutputEndsEveryRankWithOneError) {
   EXPECT_EQ(list_dir(dir).size(), 0u);
 }
 
+/// A full disk (a 256 KiB tmpfs, root only; skipped otherwise): MPI-IO's short writes must end
+/// every rank with one output error, and leave no file, for each output kind.
+TEST_P(MpiErrors, FullDiskEndsEveryRankWithOneErrorAndNoFile) {
+  if (::geteuid() != 0) GTEST_SKIP() << "mounting a small tmpfs needs root";
+  const int ranks = GetParam();
+  const std::string mnt = test_dir();
+  if (std::system(("mount -t tmpfs -o size=256k tmpfs '" + mnt + "'").c_str()) != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here";
+  struct Unmount {
+    std::string dir;
+    ~Unmount() { (void)std::system(("umount '" + dir + "'").c_str()); }
+  } unmount{mnt};
+  for (const char* ext : {".npy", ".raw", ".pvti"}) {
+    // 64^3 float samples: 1 MiB, four times the space.
+    const std::string out = mnt + "/x" + ext;
+    const RunResult r = run_mpi(ranks, "sdf '" + scene_path() + "' -o '" + out + "' --res 64");
+    EXPECT_EQ(r.code, 4) << ext << "\n" << r.err; // exit_output
+    EXPECT_EQ(error_lines(r.err), 1) << ext << "\n" << r.err;
+    EXPECT_EQ(list_dir(mnt).size(), 0u) << ext << ": " << list_dir(mnt)[0];
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Ranks, MpiErrors, ::testing::Values(1, 2, 4),
                          [](const auto& p) { return std::to_string(p.param); });
 
