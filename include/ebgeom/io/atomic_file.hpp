@@ -366,6 +366,7 @@ class OutputGroup {
         return ok;
       }
       detail::unregister_temp(p.slot);
+      p.slot = -1;
       p.tmp.clear();
     }
     pending_.clear();
