@@ -12,7 +12,10 @@
 // Every output is written under a temporary name and renamed when all ranks succeeded.
 
 #include <mpi.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <algorithm>
 
 #include <cerrno>
 #include <cstdint>
@@ -73,6 +76,9 @@ void write_collective(const std::string& path, const std::string& header, const 
   long pid = long(::getpid());
   MPI_Bcast(&pid, 1, MPI_LONG, 0, comm);
   const std::string tmp = path + ".ebgeom-mpi-" + std::to_string(pid);
+  // A file left by an earlier run with the same pid would keep bytes past the end of this one.
+  if (rank == 0) MPI_File_delete(tmp.c_str(), MPI_INFO_NULL);
+  MPI_Barrier(comm);
   MPI_File fh = MPI_FILE_NULL;
   const int orc =
       MPI_File_open(comm, tmp.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &fh);
@@ -87,9 +93,19 @@ void write_collective(const std::string& path, const std::string& header, const 
   const MPI_Datatype et = mpi_type<T>();
   const MPI_Offset total =
       MPI_Offset(header.size()) + MPI_Offset(spec.size()) * MPI_Offset(sizeof(T));
-  int rc = MPI_File_set_size(fh, total);
-  if (rc == MPI_SUCCESS && rank == 0)
-    rc = MPI_File_write_at(fh, 0, header.data(), int(header.size()), MPI_BYTE, MPI_STATUS_IGNORE);
+  // No MPI_File_set_size: it would give the file its full size as holes, hiding writes that never
+  // happened (a full disk). The writes make the size; every one's count is checked, and the size
+  // after closing.
+  int rc = MPI_SUCCESS;
+  std::uint64_t short_by = 0; // elements this rank asked to write but were not written
+  if (rank == 0) {
+    MPI_Status ws;
+    rc = MPI_File_write_at(fh, 0, header.data(), int(header.size()), MPI_BYTE, &ws);
+    int n = 0;
+    if (rc == MPI_SUCCESS &&
+        (MPI_Get_count(&ws, MPI_BYTE, &n) != MPI_SUCCESS || std::uint64_t(n) != header.size()))
+      short_by += header.size() - std::uint64_t(n > 0 ? n : 0);
+  }
   MPI_Datatype file_type = MPI_DATATYPE_NULL, row = MPI_DATATYPE_NULL;
   const auto d = mine.dims();
   const bool empty = mine.size() == 0;
@@ -110,9 +126,17 @@ void write_collective(const std::string& path, const std::string& header, const 
   if (rc == MPI_SUCCESS)
     rc = MPI_File_set_view(fh, MPI_Offset(header.size()), et, empty ? et : file_type, "native",
                            MPI_INFO_NULL);
-  if (rc == MPI_SUCCESS)
-    rc = MPI_File_write_all(fh, values.data(), st && !empty ? int(rows) : 0, empty ? et : row,
-                            MPI_STATUS_IGNORE);
+  if (rc == MPI_SUCCESS) {
+    MPI_Status ws;
+    const int count = st && !empty ? int(rows) : 0;
+    rc = MPI_File_write_all(fh, values.data(), count, empty ? et : row, &ws);
+    // OMPIO reports success on a short write (ENOSPC): the count of elements written tells.
+    MPI_Count n = 0;
+    const std::uint64_t want = std::uint64_t(count) * (empty ? 1 : d[0]);
+    if (rc == MPI_SUCCESS && want > 0 &&
+        (MPI_Get_elements_x(&ws, et, &n) != MPI_SUCCESS || n < 0 || std::uint64_t(n) != want))
+      short_by += want - (n > 0 ? std::min(std::uint64_t(n), want) : 0);
+  }
   const int crc = MPI_File_close(&fh);
   if (rc == MPI_SUCCESS) rc = crc;
   if (!empty) {
@@ -121,6 +145,19 @@ void write_collective(const std::string& path, const std::string& header, const 
   }
   if (st && rc != MPI_SUCCESS)
     st = {cli::exit_output, path + ": write failed (" + error_string(rc) + ")"};
+  if (st && short_by > 0)
+    st = {cli::exit_output, path + ": write failed: " + std::to_string(short_by) +
+                                " values or bytes were not written (disk full?)"};
+  if (st && rank == 0) { // every byte must have arrived: the size, and no hole where data belongs
+    struct stat fs;
+    if (::stat(tmp.c_str(), &fs) != 0)
+      st = {cli::exit_output,
+            path + ": the written file vanished (" + std::string(std::strerror(errno)) + ")"};
+    else if (MPI_Offset(fs.st_size) != total)
+      st = {cli::exit_output, path + ": write failed: the file holds " +
+                                  std::to_string(fs.st_size) + " of its " + std::to_string(total) +
+                                  " bytes (disk full?)"};
+  }
   st = agree(st, comm);
   if (st && rank == 0 && std::rename(tmp.c_str(), path.c_str()) != 0)
     st = {cli::exit_output, path + ": cannot rename the temporary file onto it (" +

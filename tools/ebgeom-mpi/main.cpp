@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -175,9 +176,12 @@ template <class T> int run(const SdfOptions& o, const World& w) {
         kind == OutputKind::npy
             ? npy_header(npy_descr(wopt.dtype), {spec.nz(), spec.ny(), spec.nx()})
             : "";
+    // The .raw sidecar waits in a group for the data: it appears only if the data was written.
+    std::unique_ptr<OutputGroup> sidecar;
     if (kind == OutputKind::raw) {
       Status st;
       if (root) {
+        sidecar = std::make_unique<OutputGroup>();
         const std::string side = raw_sidecar_path(o.output);
         const std::string base = std::filesystem::path(o.output).filename().string();
         detail::AtomicFile f(side);
@@ -195,6 +199,14 @@ template <class T> int run(const SdfOptions& o, const World& w) {
       if (!st) throw Abort{st};
     }
     write_collective(o.output, header, spec, owned, v, w.comm);
+    Status st;
+    if (sidecar)
+      if (auto ok = sidecar->commit(); !ok) st = {cli::exit_output, ok.error().what()};
+    st = agree(st, w.comm);
+    if (!st) {
+      if (root) std::remove(o.output.c_str()); // no data without its sidecar
+      throw Abort{st};
+    }
   }
   const double t4 = cli::now_s();
 

@@ -2,10 +2,15 @@
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #include "common.hpp"
 
+#include "ebgeom/io/atomic_file.hpp"
+
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -44,11 +49,31 @@ void require_memory(std::uint64_t bytes, const std::string& what, const std::str
                             human_bytes(avail) + " is available; " + hint);
 }
 
+namespace {
+const char* file_type_name(mode_t mode) {
+  return S_ISFIFO(mode)   ? "a FIFO (named pipe)"
+         : S_ISCHR(mode)  ? "a character device"
+         : S_ISBLK(mode)  ? "a block device"
+         : S_ISSOCK(mode) ? "a socket"
+                          : "not a regular file";
+}
+} // namespace
+
 void require_input_file(const std::string& path) {
-  std::error_code ec;
-  const auto st = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(st)) fail(exit_input, path + ": no such file");
-  if (std::filesystem::is_directory(st)) fail(exit_input, path + ": is a directory, not a file");
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) {
+    if (errno == ENOENT || errno == ENOTDIR) fail(exit_input, path + ": no such file");
+    fail(exit_input, path + ": cannot open (" + std::strerror(errno) + ")");
+  }
+  if (S_ISDIR(st.st_mode)) fail(exit_input, path + ": is a directory, not a file");
+  if (!S_ISREG(st.st_mode))
+    fail(exit_input, path + ": is " + file_type_name(st.st_mode) +
+                         ", not a regular file; only regular files are read (save the data to a "
+                         "file first)");
+}
+
+void require_output_target(const std::string& path) {
+  if (auto ok = check_output_target(path); !ok) fail(exit_output, ok.error().what());
 }
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }

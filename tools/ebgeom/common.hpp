@@ -39,9 +39,14 @@ std::uint64_t available_memory_bytes();
 void require_memory(std::uint64_t bytes, const std::string& what,
                     const std::string& hint = "lower the resolution (--res/--dx) or shrink --box");
 
-/// Throws CliError (input) unless `path` names an existing regular (or special) file that is not a
-/// directory: `FILE: no such file`, `FILE: is a directory`.
+/// Throws CliError (input) unless `path` names an existing regular file (following links):
+/// `FILE: no such file`, `FILE: is a directory, not a file`, `FILE: is a FIFO (named pipe), not
+/// a regular file; ...` (FIFOs, devices and sockets would block or never end).
 void require_input_file(const std::string& path);
+
+/// Throws CliError (output) unless `path` is something an output may be written to
+/// (`ebgeom::check_output_target`): checked before the work, so a refused target costs nothing.
+void require_output_target(const std::string& path);
 
 /// "1.5 GiB" style size.
 std::string human_bytes(std::uint64_t bytes);

@@ -50,9 +50,11 @@ int run_demo(const DemoOptions& o) {
   if (ec) fail(exit_output, o.dir + ": cannot create the output directory (" + ec.message() + ")");
   const std::string vti = o.dir + "/demo.vti", npy = o.dir + "/demo.npy", png = o.dir + "/demo.png";
   const Span<const T> v(values);
+  OutputGroup outputs; // every output appears only once all are written
   write_grid_or_fail(vti, spec, v, DType::float32);
   write_grid_or_fail(npy, spec, v, DType::float32);
   const PngInfo img = write_png_slice(png, extract_slice(spec, v, SliceSpec{1, 0.5}));
+  if (auto ok = outputs.commit(); !ok) fail(exit_output, ok.error().what());
   const double t3 = now_s();
   const GridStats st = grid_stats(v);
 

@@ -11,9 +11,12 @@
 #include "common.hpp"
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/core/error.hpp"
+#include "ebgeom/io/atomic_file.hpp"
 
 int main(int argc, char** argv) {
   using namespace ebgeom::cli;
+  // SIGINT, SIGTERM, SIGHUP, SIGPIPE: remove unfinished temporary outputs, then end as usual.
+  ebgeom::remove_temp_files_on_signals();
   CLI::App app{"ebgeom: fast exact signed distance fields (S < 0 inside, S > 0 outside)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("ebgeom ") + EBGEOM_VERSION_STRING);

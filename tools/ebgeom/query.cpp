@@ -40,6 +40,8 @@ int run_query(const QueryOptions& o) {
       fail(exit_usage, *out + ": query outputs are .npy files");
   require_input_file(o.input);
   require_input_file(o.points);
+  for (const std::string* out : {&o.output, &o.closest, &o.normals})
+    if (!out->empty()) require_output_target(*out);
 
   const double t0 = now_s();
   const bool scene = is_scene_path(o.input);
@@ -128,9 +130,13 @@ int run_query(const QueryOptions& o) {
     }
   }
   const double t3 = now_s();
-  write_or_fail(o.output, d, {n});
-  if (!o.closest.empty()) write_or_fail(o.closest, cp, {n, 3});
-  if (!o.normals.empty()) write_or_fail(o.normals, nm, {n, 3});
+  {
+    OutputGroup outputs; // every output appears only once all are written
+    write_or_fail(o.output, d, {n});
+    if (!o.closest.empty()) write_or_fail(o.closest, cp, {n, 3});
+    if (!o.normals.empty()) write_or_fail(o.normals, nm, {n, 3});
+    if (auto ok = outputs.commit(); !ok) fail(exit_output, ok.error().what());
+  }
   const double t4 = now_s();
   const GridStats st = grid_stats(Span<const double>(d));
   if (o.json) {

@@ -52,6 +52,9 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
         (!o.png.empty() && same(o.png)))
       fail(exit_usage, o.output + ": writing it would overwrite the input " + o.input);
   }
+  require_output_target(o.output);
+  if (!sparse && *fmt == GridFormat::raw) require_output_target(raw_sidecar_path(o.output));
+  if (!o.png.empty()) require_output_target(o.png);
 
   const double t0 = now_s();
   const SdfInput<T> in = load_sdf_input<T>(o, sign);
@@ -96,6 +99,7 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   }
   const double t3 = now_s();
   PngInfo img;
+  OutputGroup outputs; // every output appears only once all are written
   if (sparse) {
     const SparseGrid<T>& g = grid.sparse;
     auto ok = write_sparse_npz(o.output, g);
@@ -112,6 +116,7 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     write_grid_or_fail(o.output, spec, v, sizeof(T) == 4 ? DType::float32 : DType::float64);
     if (!o.png.empty()) img = write_png_slice(o.png, extract_slice(spec, v, slice));
   }
+  if (auto ok = outputs.commit(); !ok) fail(exit_output, ok.error().what());
   const double t4 = now_s();
   const GridStats st = sparse ? grid_stats(grid.sparse) : grid_stats(Span<const T>(grid.dense));
   const int threads = resolve_threads(gopt.exec);

@@ -64,13 +64,33 @@ Result<PolygonSoup<T>, ParseError> parse_obj(ByteView bytes, const ReadOptions& 
         std::int64_t v = 0;
         const NumberStatus s = in.integer_in_line(v, '/');
         if (s != NumberStatus::ok) return in.number_error(s, "a vertex index");
-        // the texture and normal indices of `v/vt/vn` are not used
+        // The texture and normal indices of `v/vt/vn` are not used, but the corner must be one
+        // of `v`, `v/vt`, `v/vt/vn` or `v//vn` (each index an integer, perhaps negative).
         const char* q = in.cur();
-        while (!in.is_terminator(q)) {
-          if (!((*q >= '0' && *q <= '9') || *q == '/' || *q == '-'))
-            return in.fail(ErrorCode::syntax, "malformed face corner ",
-                           detail::quote(in.last_token()));
-          ++q;
+        auto index_at = [&](const char*& r) {
+          if (!in.is_terminator(r) && *r == '-') ++r;
+          const char* first = r;
+          while (!in.is_terminator(r) && *r >= '0' && *r <= '9') ++r;
+          return r > first;
+        };
+        bool good = true;
+        if (!in.is_terminator(q)) { // after `v`: "/vt", "/vt/vn" or "//vn"
+          ++q;                      // the '/' that stopped the vertex index
+          if (!in.is_terminator(q) && *q == '/') {
+            ++q;
+            good = index_at(q);
+          } else {
+            good = index_at(q);
+            if (good && !in.is_terminator(q) && *q == '/') {
+              ++q;
+              good = index_at(q);
+            }
+          }
+          good = good && in.is_terminator(q);
+        }
+        if (!good) {
+          return in.fail(ErrorCode::syntax, "column ", in.mark_column(), ": malformed face corner ",
+                         detail::quote(in.last_token()), " (expected v, v/vt, v/vt/vn or v//vn)");
         }
         in.set_cur(q);
         if (v == 0) return in.fail(ErrorCode::bad_index, "vertex index 0 (OBJ indices start at 1)");

@@ -5,9 +5,16 @@
 /// `read_mesh` (from a file) and `parse_mesh` (from memory): format detection by content first,
 /// extension second, then the matching reader. Also `read_file`, the bounded file loader.
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <cstdint>
-#include <fstream>
+#include <cstring>
 #include <memory>
+#include <new>
 #include <string>
 
 #include "ebgeom/core/result.hpp"
@@ -28,24 +35,71 @@ struct FileBytes {
   ByteView view() const noexcept { return ByteView(data.get(), size); }
 };
 
-/// Reads the file `path` into memory. Errors: `io` (cannot open or read), `size_mismatch` (larger
-/// than `opt.max_bytes`, checked before allocating). The error's path is `path`.
+/// What a non-regular file is, for messages: "a FIFO (named pipe)", "a character device", ...
+inline const char* file_type_name(unsigned mode) noexcept {
+  return S_ISDIR(mode)    ? "a directory"
+         : S_ISFIFO(mode) ? "a FIFO (named pipe)"
+         : S_ISCHR(mode)  ? "a character device"
+         : S_ISBLK(mode)  ? "a block device"
+         : S_ISSOCK(mode) ? "a socket"
+                          : "not a regular file";
+}
+
+/// Reads the file `path` into memory. Only regular files are read: a FIFO, device, socket or
+/// directory is refused without blocking (opened non-blocking, checked with `fstat`). A file
+/// whose first 64 KiB (or all of it, if shorter) are zero bytes is refused before the rest is
+/// read: no mesh format starts so (a blank or sparse file). Errors: `io` (cannot open or read, not
+/// a regular file), `size_mismatch` (larger than `opt.max_bytes`, checked before allocating),
+/// `out_of_memory` (the file's size cannot be allocated), `bad_magic` (zero bytes). The error's
+/// path is `path`.
 inline Result<FileBytes, ParseError> read_file(const std::string& path,
                                                const ReadOptions& opt = {}) {
-  std::ifstream f(path, std::ios::binary | std::ios::ate);
-  if (!f) return make_parse_error(ErrorCode::io, path, 0, 0, "cannot open the file");
-  const std::streamoff end = f.tellg();
-  if (end < 0) return make_parse_error(ErrorCode::io, path, 0, 0, "cannot determine the file size");
-  if (std::uint64_t(end) > opt.max_bytes)
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0)
+    return make_parse_error(ErrorCode::io, path, 0, 0, "cannot open the file (",
+                            std::strerror(errno), ")");
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st;
+  if (::fstat(fd, &st) != 0)
+    return make_parse_error(ErrorCode::io, path, 0, 0, "cannot determine the file size (",
+                            std::strerror(errno), ")");
+  if (!S_ISREG(st.st_mode))
+    return make_parse_error(ErrorCode::io, path, 0, 0, "is ", file_type_name(st.st_mode),
+                            ", not a regular file; only regular files are read (save the data "
+                            "to a file first)");
+  const std::uint64_t end = std::uint64_t(st.st_size);
+  if (end > opt.max_bytes)
     return make_parse_error(ErrorCode::size_mismatch, path, 0, 0, "file of ", end,
                             " bytes exceeds the limit of ", opt.max_bytes, " bytes");
   FileBytes out;
   out.size = std::size_t(end);
-  out.data.reset(new char[out.size > 0 ? out.size : 1]);
-  f.seekg(0);
-  if (out.size > 0 && !f.read(out.data.get(), std::streamsize(out.size)))
-    return make_parse_error(ErrorCode::io, path, 0, 0, "cannot read the file's ", out.size,
-                            " bytes");
+  out.data.reset(new (std::nothrow) char[out.size > 0 ? out.size : 1]);
+  if (!out.data)
+    return make_parse_error(ErrorCode::out_of_memory, path, 0, 0, "cannot allocate ", out.size,
+                            " bytes to read the file (out of memory)");
+  std::size_t got = 0;
+  auto read_up_to = [&](std::size_t want) -> bool {
+    while (got < want) {
+      const ssize_t r = ::read(fd, out.data.get() + got, want - got);
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) return false;
+      got += std::size_t(r);
+    }
+    return true;
+  };
+  const std::size_t head = out.size < 65536 ? out.size : 65536;
+  if (!read_up_to(head))
+    return make_parse_error(ErrorCode::io, path, got, 0, "cannot read the file's ", out.size,
+                            " bytes (", got == 0 ? "no data" : std::strerror(errno), ")");
+  if (head > 0 && std::all_of(out.data.get(), out.data.get() + head, [](char c) { return c == 0; }))
+    return make_parse_error(ErrorCode::bad_magic, path, 0, 0, "the first ", head, " of its ",
+                            out.size, " bytes are all zero: not a mesh (a blank or sparse file?)");
+  if (!read_up_to(out.size))
+    return make_parse_error(ErrorCode::io, path, got, 0, "cannot read the file's ", out.size,
+                            " bytes (", errno != 0 ? std::strerror(errno) : "it got shorter", ")");
   return out;
 }
 

@@ -206,6 +206,12 @@ class TextReader {
   }
   /// Byte offset of the last token (or number) read.
   std::size_t mark_offset() const noexcept { return std::size_t(tok_ - begin_); }
+  /// 1-based column (in bytes) of the last token (or number) read.
+  std::size_t mark_column() const noexcept {
+    const char* b = tok_;
+    while (b > begin_ && b[-1] != '\n') --b;
+    return std::size_t(tok_ - b) + 1;
+  }
   /// The last token (or number) read.
   std::string_view last_token() const noexcept {
     const char* e = tok_;

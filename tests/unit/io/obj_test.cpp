@@ -90,6 +90,35 @@ TYPED_TEST(ObjTest, NumbersThroughFromChars) {
   }
 }
 
+TYPED_TEST(ObjTest, FaceCornersOutsideTheFourFormsAreRejectedWithLineAndColumn) {
+  using T = TypeParam;
+  const std::string v = tet_vertices;
+  // Accepted: v, v/vt, v/vt/vn, v//vn (negative indices too).
+  for (const char* face : {"f 1 2 3\n", "f 1/1 2/2 3/3\n", "f 1/1/1 2/2/2 3/3/3\n",
+                           "f 1//1 2//2 3//3\n", "f -4/-1/-1 -3//-2 -2/-3\n"}) {
+    auto r = io::parse_obj<T>(v + face, {});
+    EXPECT_TRUE(r.has_value()) << face << (r ? "" : r.error().what());
+  }
+  struct Case {
+    const char* face;
+    std::size_t column;
+  };
+  const Case cases[] = {{"f 1/2/3/4 2 3\n", 3}, {"f 1 2 1/2/3/4/5\n", 7}, {"f 1 2 3/\n", 7},
+                        {"f 1 2/ 3\n", 5},      {"f 1// 2 3\n", 3},       {"f 1 2 3//\n", 7},
+                        {"f 1 2 3/1/\n", 7},    {"f 1 2 3///1\n", 7},     {"f 1/-/1 2 3\n", 3},
+                        {"f  1 2 3/4-5\n", 8}};
+  for (const Case& c : cases) {
+    auto r = io::parse_obj<T>(v + c.face, {});
+    ASSERT_FALSE(r.has_value()) << c.face;
+    EXPECT_EQ(r.error().code, ErrorCode::syntax) << c.face << ": " << r.error().what();
+    EXPECT_EQ(r.error().line, 5u) << c.face;
+    EXPECT_NE(r.error().what().find("line 5: column " + std::to_string(c.column) +
+                                    ": malformed face corner"),
+              std::string::npos)
+        << c.face << ": " << r.error().what();
+  }
+}
+
 TYPED_TEST(ObjTest, IndexErrors) {
   using T = TypeParam;
   const std::string v = tet_vertices;
