@@ -76,6 +76,20 @@ def obj():
     return s
 
 
+def off(kw="OFF", extras=False):
+    s = "# seed\n%s\n%d %d 0\n" % (kw, len(V), len(F))
+    s += "".join(("%g %g %g" % v) + (" 0.5 0.5 0.5 1" if extras else "") + "\n" for v in V)
+    s += "".join(("3 %d %d %d" % f) + (" 1 0 0" if extras else "") + "\n" for f in F)
+    return s
+
+
+def off_binary():
+    out = b"OFF BINARY\n" + struct.pack(">3i", len(V), len(F), 0)
+    out += b"".join(struct.pack(">3f", *v) for v in V)
+    out += b"".join(struct.pack(">4i", 3, *f) + struct.pack(">i", 1) + struct.pack(">f", .5) for f in F)
+    return out
+
+
 def vtk(binary=False, v51=False, strips=False):
     s = b"# vtk DataFile Version 3.0\nseed\n" + (b"BINARY\n" if binary else b"ASCII\n")
     s += b"DATASET POLYDATA\nPOINTS 4 float\n"
@@ -119,3 +133,8 @@ put("mesh", "binary.stl", stl_binary())
 put("mesh", "extras.ply", ply("binary_little_endian", extras=True))
 put("mesh", "tet.obj", obj())
 put("mesh", "bin.vtk", vtk(True))
+put("off", "tet.off", off())
+put("off", "colours.off", off("COFF", extras=True))
+put("off", "binary.off", off_binary())
+put("mesh", "tet.off", off())
+put("mesh", "binary.off", off_binary())

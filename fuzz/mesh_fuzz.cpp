@@ -12,7 +12,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   auto r = io::parse_mesh<double>(b, opt);
   fuzz::check_result(r);
   if (!r.has_value()) return 0;
-  for (io::MeshFormat f : {io::MeshFormat::ply, io::MeshFormat::obj, io::MeshFormat::vtk})
+  for (io::MeshFormat f :
+       {io::MeshFormat::ply, io::MeshFormat::obj, io::MeshFormat::off, io::MeshFormat::vtk})
     for (io::Encoding e : {io::Encoding::binary, io::Encoding::ascii}) {
       io::WriteOptions w;
       w.format = f;

@@ -209,7 +209,7 @@ TEST(Convert, RoundTripsThroughEveryFormat) {
   const std::string dir = test_dir();
   const std::string obj = write_mesh_file(dir, "l.obj", l_prism_obj);
   const auto ref = BruteForceMeshSdf<double>::build(io::read_mesh<double>(obj).value()).value();
-  for (const char* out : {"l.stl", "l.ply", "l.vtk", "l2.obj"}) {
+  for (const char* out : {"l.stl", "l.ply", "l.vtk", "l2.obj", "l.off"}) {
     for (const char* flag : {"", " --ascii"}) {
       const RunResult r = run("convert '" + obj + "' '" + dir + "/" + out + "'" + flag);
       ASSERT_EQ(r.code, 0) << out << flag << "\n" << r.err;
@@ -221,6 +221,74 @@ TEST(Convert, RoundTripsThroughEveryFormat) {
       for (const V& p : sample_points()) ASSERT_NEAR(sdf(p), ref(p), 1e-6) << out << flag << p;
     }
   }
+}
+
+// The summary names the encoding really written: OBJ and OFF are text even without --ascii.
+TEST(Convert, ReportsTheRealEncoding) {
+  const std::string dir = test_dir();
+  const std::string obj = write_mesh_file(dir, "l.obj", l_prism_obj);
+  struct Case {
+    const char* out;
+    const char* flag;
+    const char* says;
+  };
+  for (const Case& c : {Case{"a.obj", "", "(obj ascii)"}, Case{"a.off", "", "(off ascii)"},
+                        Case{"a.stl", "", "(stl binary)"}, Case{"b.stl", " --ascii", "(stl ascii)"},
+                        Case{"a.ply", "", "(ply binary)"}}) {
+    const RunResult r = run("convert '" + obj + "' '" + dir + "/" + c.out + "'" + c.flag);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find(c.says), std::string::npos) << c.out << ": " << r.out;
+  }
+  EXPECT_EQ(slurp(dir + "/a.off").rfind("OFF\n", 0), 0u);
+}
+
+// A double mesh whose coordinates float cannot hold is not written as an STL of infinities (which
+// ebgeom itself would then refuse); formats that keep double precision take it exactly.
+TEST(Convert, RefusesCoordinatesTheOutputCannotHold) {
+  const std::string dir = test_dir();
+  const std::string obj = write_mesh_file(
+      dir, "big.obj",
+      "v 0 0 0\nv 1e300 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n");
+  RunResult r = run("convert '" + obj + "' '" + dir + "/big.stl'");
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("outside the range of float"), std::string::npos) << r.err;
+  EXPECT_FALSE(exists(dir + "/big.stl"));
+  for (const char* out : {"big.ply", "big.off", "big.vtk"}) {
+    r = run("convert '" + obj + "' '" + dir + "/" + out + "'");
+    ASSERT_EQ(r.code, 0) << out << ": " << r.err;
+    auto soup = io::read_mesh<double>(dir + "/" + out);
+    ASSERT_TRUE(soup) << out;
+    EXPECT_EQ(soup->bounds().hi.x, 1e300) << out;
+  }
+}
+
+// An OFF file works as input to every mesh command.
+TEST(MeshInput, OffFilesAreRead) {
+  const std::string dir = test_dir();
+  const std::string off = write_mesh_file(
+      dir, "tet.off",
+      "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n");
+  RunResult r = run("info '" + off + "' --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["vertices"], 4);
+  EXPECT_EQ(j["faces"], 4);
+  EXPECT_EQ(j["boundary_edges"], 0);
+  r = run("convert '" + off + "' '" + dir + "/tet.stl'");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string bad = write_mesh_file(dir, "bad.off", "OFF\n4 4 6\n0 0 0\n1 0 0\n");
+  r = run("info '" + bad + "'");
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("bad.off:"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UnknownCommandIsNamedAndTheCommandsListed) {
+  const RunResult r = run("sfd x.stl");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("unknown command 'sfd'"), std::string::npos) << r.err;
+  for (const char* c : {"demo", "sdf", "query", "convert", "info"})
+    EXPECT_NE(r.err.find(c), std::string::npos) << c << ": " << r.err;
+  EXPECT_EQ(run("sdf --help").code, 0);
 }
 
 TEST(Convert, Errors) {

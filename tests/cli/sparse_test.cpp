@@ -267,13 +267,14 @@ TEST(SparseNpz, GridTooLargeForADenseArrayIsWrittenSparse) {
 TEST(SparseNpz, Errors) {
   const std::string dir = test_dir();
   const std::string in = sphere_scene(dir);
-  // .npz is the sparse band: without --band (or with 0) it is a usage error.
+  // .npz is the sparse band only with --band W > 0: without it (or with 0) it is the dense grid
+  // (formats_test.cpp checks its content).
   for (const char* opts : {" --res 16", " --res 16 --band 0"}) {
-    const RunResult r = run("sdf '" + in + "' -o '" + dir + "/x.npz'" + opts);
-    EXPECT_EQ(r.code, 2) << opts << r.err;
-    EXPECT_NE(r.err.find("x.npz: .npz is the sparse narrow-band output and needs --band"),
-              std::string::npos)
-        << r.err;
+    const RunResult r = run("sdf '" + in + "' -o '" + dir + "/x.npz' -q" + opts);
+    EXPECT_EQ(r.code, 0) << opts << r.err;
+    const auto z = read_npz(dir + "/x.npz");
+    EXPECT_EQ(z.count("sdf"), 1u) << opts;
+    EXPECT_EQ(z.count("values"), 0u) << opts;
   }
   RunResult r = run("sdf '" + in + "' -o '" + dir + "/x.txt' --band 2");
   EXPECT_EQ(r.code, 2) << r.err;

@@ -89,7 +89,7 @@ Subcommand add_info(CLI::App& app) {
   auto o = std::make_shared<InfoOptions>();
   CLI::App* sub = app.add_subcommand(
       "info", "Mesh counts, bounding box and validation report (is the SDF well defined?)");
-  sub->add_option("MESH", o->input, "mesh file (STL, PLY, OBJ, VTK)")->required();
+  sub->add_option("MESH", o->input, "mesh file (STL, PLY, OBJ, OFF, VTK)")->required();
   sub->add_flag("--json", o->json, "print the report as one JSON object");
   sub->footer("Example:\n  ebgeom info bunny.obj --json");
   return {sub, [o] { return run_info(*o); }};

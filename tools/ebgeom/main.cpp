@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
 #include <vector>
 
 #include "commands.hpp"
@@ -28,6 +29,18 @@ int main(int argc, char** argv) {
   subs.push_back(add_query(app));
   subs.push_back(add_convert(app));
   subs.push_back(add_info(app));
+  // An unknown first word is a mistyped command: name it and list the commands (CLI11 would say
+  // only that a subcommand is required).
+  bool known = argc < 2 || argv[1][0] == '-';
+  for (const auto& s : subs) known = known || s.app->check_name(argv[1]);
+  if (!known) {
+    std::string names;
+    for (const auto& s : subs) names += (names.empty() ? "" : ", ") + s.app->get_name();
+    std::fprintf(stderr, "ebgeom: error: unknown command '%s'; the commands are: %s\n", argv[1],
+                 names.c_str());
+    std::fprintf(stderr, "Run 'ebgeom --help' or 'ebgeom COMMAND --help' for usage.\n");
+    return exit_usage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

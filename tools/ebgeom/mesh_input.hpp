@@ -5,11 +5,13 @@
 
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "common.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
+#include "gltf/gltf.hpp"
 
 #include "ebgeom/io/read_mesh.hpp"
 #include "ebgeom/sdf/mesh_sdf.hpp"
@@ -103,9 +105,29 @@ template <class T> class CliMeshSdf {
   SignMode requested_ = SignMode::automatic;
 };
 
-/// Reads a mesh file (STL, PLY, OBJ, legacy VTK; format detected by content). Throws CliError
-/// (input) with the reader's `FILE: line/byte: what` message.
+/// Reads a mesh file (STL, PLY, OBJ, OFF, legacy VTK; format detected by content), or a glTF 2.0
+/// file by its extension (.gltf, .glb: `read_gltf`). Throws CliError (input) with the reader's
+/// `FILE: line/byte: what` message.
 template <class T> PolygonSoup<T> load_mesh(const std::string& path) {
+  if (is_gltf_path(path)) {
+    PolygonSoup<double> g = read_gltf(path);
+    if constexpr (std::is_same_v<T, double>) {
+      return g;
+    } else {
+      PolygonSoup<T> out;
+      out.indices = std::move(g.indices);
+      out.offsets = std::move(g.offsets);
+      out.vertices.reserve(g.vertices.size());
+      for (const Vec3<double>& v : g.vertices) {
+        const Vec3<T> w = Vec3<T>::from(v);
+        if (!all_finite(w))
+          fail(exit_input, path + ": a (transformed) position is outside the range of float; "
+                                  "use --precision double");
+        out.vertices.push_back(w);
+      }
+      return out;
+    }
+  }
   auto soup = io::read_mesh<T>(path);
   if (!soup) fail(exit_input, soup.error().what());
   return std::move(*soup);

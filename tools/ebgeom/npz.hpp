@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
-// NumPy `.npz` archives (a ZIP of `.npy` members, stored uncompressed) and the sparse narrow-band
-// output of `ebgeom sdf` written as one: the layout is documented in docs/cli.md ("Sparse output").
+// NumPy `.npz` archives (a ZIP of `.npy` members, stored uncompressed), and the two `.npz` outputs
+// of `ebgeom sdf`: the sparse narrow band (with --band) and the dense grid with its geometry
+// (without); both layouts are documented in docs/cli.md.
 
 #include <array>
 #include <cstdint>
@@ -93,7 +94,48 @@ Result<std::uint64_t> write_sparse_npz(const std::string& path, const SparseGrid
   return write_npz(path, members, opt);
 }
 
-/// True when `path` ends in `.npz` (the sparse output).
+/// `text` as numpy's 'U' dtype: UTF-32 code units in the host's byte order.
+inline std::string npy_unicode(const std::string& text) {
+  const bool le = ebgeom::detail::host_is_little_endian();
+  std::string out;
+  for (char c : text) {
+    const char unit[4] = {le ? c : '\0', '\0', '\0', le ? '\0' : c};
+    out.append(unit, 4);
+  }
+  return out;
+}
+
+/// The dense `.npz` of a grid (docs/cli.md, "Dense .npz output"): the grid and its geometry in one
+/// file that `numpy.load` reads:
+///  - `sdf` (NZ, NY, NX) of T: `sdf[k, j, i]` is the sample at `origin + (i, j, k) * spacing`;
+///  - `origin`, `spacing` (3,) float64 (x, y, z); `box` (2, 3) float64 (lo, hi);
+///  - `centering` () unicode `cell` or `node`.
+template <class T>
+Result<std::uint64_t> write_dense_npz(const std::string& path, const GridSpec<T>& s,
+                                      Span<const T> values, const NpzOptions& opt = {}) {
+  const std::string bo(1, ebgeom::detail::host_is_little_endian() ? '<' : '>');
+  const std::string vt = npy_descr(sizeof(T) == 4 ? DType::float32 : DType::float64);
+  const Vec3<T> o = s.origin(), h = s.spacing();
+  const double origin[3] = {double(o.x), double(o.y), double(o.z)};
+  const double spacing[3] = {double(h.x), double(h.y), double(h.z)};
+  const double box[6] = {double(s.box.lo.x), double(s.box.lo.y), double(s.box.lo.z),
+                         double(s.box.hi.x), double(s.box.hi.y), double(s.box.hi.z)};
+  const std::string text = to_string(s.centering);
+  const std::string centring = npy_unicode(text);
+  using Shape = std::vector<std::size_t>;
+  const std::vector<NpzMember> members = {
+      {"sdf", npy_header(vt, Shape{s.nz(), s.ny(), s.nx()}), values.data(),
+       std::uint64_t(values.size()) * sizeof(T)},
+      {"origin", npy_header(bo + "f8", Shape{3}), origin, sizeof origin},
+      {"spacing", npy_header(bo + "f8", Shape{3}), spacing, sizeof spacing},
+      {"box", npy_header(bo + "f8", Shape{2, 3}), box, sizeof box},
+      {"centering", npy_header(bo + "U" + std::to_string(text.size()), Shape{}), centring.data(),
+       centring.size()},
+  };
+  return write_npz(path, members, opt);
+}
+
+/// True when `path` ends in `.npz` (the sparse output with --band, the dense one without).
 inline bool is_npz_path(const std::string& path) {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".npz") == 0;
 }

@@ -10,9 +10,13 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "common.hpp"
 #include "ebgeom/eval/write_grid.hpp"
+#include "ebgeom/version.hpp"
 
 namespace ebgeom::cli {
 
@@ -37,59 +41,6 @@ SliceSpec parse_slice(const std::string& text) {
 
 namespace {
 
-// 5x7 bitmap glyphs ('#' = ink), enough for numbers and the legend's lower-case words.
-struct Glyph {
-  char c;
-  const char* rows[7];
-};
-const Glyph font[] = {
-    {'0', {".###.", "#...#", "#..##", "#.#.#", "##..#", "#...#", ".###."}},
-    {'1', {"..#..", ".##..", "..#..", "..#..", "..#..", "..#..", ".###."}},
-    {'2', {".###.", "#...#", "....#", "...#.", "..#..", ".#...", "#####"}},
-    {'3', {"#####", "...#.", "..#..", "...#.", "....#", "#...#", ".###."}},
-    {'4', {"...#.", "..##.", ".#.#.", "#..#.", "#####", "...#.", "...#."}},
-    {'5', {"#####", "#....", "####.", "....#", "....#", "#...#", ".###."}},
-    {'6', {"..##.", ".#...", "#....", "####.", "#...#", "#...#", ".###."}},
-    {'7', {"#####", "....#", "...#.", "..#..", ".#...", ".#...", ".#..."}},
-    {'8', {".###.", "#...#", "#...#", ".###.", "#...#", "#...#", ".###."}},
-    {'9', {".###.", "#...#", "#...#", ".####", "....#", "...#.", ".##.."}},
-    {'-', {".....", ".....", ".....", "#####", ".....", ".....", "....."}},
-    {'+', {".....", "..#..", "..#..", "#####", "..#..", "..#..", "....."}},
-    {'.', {".....", ".....", ".....", ".....", ".....", ".##..", ".##.."}},
-    {'=', {".....", ".....", "#####", ".....", "#####", ".....", "....."}},
-    {'(', {"...#.", "..#..", ".#...", ".#...", ".#...", "..#..", "...#."}},
-    {')', {".#...", "..#..", "...#.", "...#.", "...#.", "..#..", ".#..."}},
-    {'/', {".....", "....#", "...#.", "..#..", ".#...", "#....", "....."}},
-    {':', {".....", ".##..", ".##..", ".....", ".##..", ".##..", "....."}},
-    {'<', {"...#.", "..#..", ".#...", "#....", ".#...", "..#..", "...#."}},
-    {'>', {".#...", "..#..", "...#.", "....#", "...#.", "..#..", ".#..."}},
-    {'a', {".....", ".....", ".###.", "....#", ".####", "#...#", ".####"}},
-    {'b', {"#....", "#....", "#.##.", "##..#", "#...#", "#...#", "####."}},
-    {'c', {".....", ".....", ".###.", "#....", "#....", "#...#", ".###."}},
-    {'d', {"....#", "....#", ".##.#", "#..##", "#...#", "#...#", ".####"}},
-    {'e', {".....", ".....", ".###.", "#...#", "#####", "#....", ".###."}},
-    {'f', {"..##.", ".#..#", ".#...", "###..", ".#...", ".#...", ".#..."}},
-    {'g', {".....", ".####", "#...#", "#...#", ".####", "....#", ".###."}},
-    {'h', {"#....", "#....", "#.##.", "##..#", "#...#", "#...#", "#...#"}},
-    {'i', {"..#..", ".....", ".##..", "..#..", "..#..", "..#..", ".###."}},
-    {'k', {"#....", "#....", "#..#.", "#.#..", "##...", "#.#..", "#..#."}},
-    {'l', {".##..", "..#..", "..#..", "..#..", "..#..", "..#..", ".###."}},
-    {'m', {".....", ".....", "##.#.", "#.#.#", "#.#.#", "#...#", "#...#"}},
-    {'n', {".....", ".....", "#.##.", "##..#", "#...#", "#...#", "#...#"}},
-    {'o', {".....", ".....", ".###.", "#...#", "#...#", "#...#", ".###."}},
-    {'p', {".....", ".....", "####.", "#...#", "####.", "#....", "#...."}},
-    {'q', {".....", ".....", ".####", "#...#", ".####", "....#", "....#"}},
-    {'r', {".....", ".....", "#.##.", "##..#", "#....", "#....", "#...."}},
-    {'s', {".....", ".....", ".###.", "#....", ".###.", "....#", "####."}},
-    {'t', {".#...", ".#...", "###..", ".#...", ".#...", ".#..#", "..##."}},
-    {'u', {".....", ".....", "#...#", "#...#", "#...#", "#..##", ".##.#"}},
-    {'v', {".....", ".....", "#...#", "#...#", "#...#", ".#.#.", "..#.."}},
-    {'w', {".....", ".....", "#...#", "#...#", "#.#.#", "#.#.#", ".#.#."}},
-    {'x', {".....", ".....", "#...#", ".#.#.", "..#..", ".#.#.", "#...#"}},
-    {'y', {".....", ".....", "#...#", "#...#", ".####", "....#", ".###."}},
-    {'z', {".....", ".....", "#####", "...#.", "..#..", ".#...", "#####"}},
-};
-
 struct Rgb {
   std::uint8_t r, g, b;
 };
@@ -107,20 +58,6 @@ class Image {
     p[2] = c.b;
   }
   const std::uint8_t* row(int y) const { return &px_[std::size_t(y) * w_ * 3]; }
-  static constexpr int scale = 2, advance = 6 * scale, line = 9 * scale;
-  static int text_width(const std::string& s) { return int(s.size()) * advance; }
-  void text(int x, int y, const std::string& s, Rgb c) {
-    for (char ch : s) {
-      for (const Glyph& g : font)
-        if (g.c == ch)
-          for (int r = 0; r < 7; ++r)
-            for (int q = 0; q < 5; ++q)
-              if (g.rows[r][q] == '#')
-                for (int a = 0; a < scale; ++a)
-                  for (int b = 0; b < scale; ++b) set(x + q * scale + b, y + r * scale + a, c);
-      x += advance;
-    }
-  }
 
  private:
   int w_, h_;
@@ -198,17 +135,21 @@ PngInfo write_png_slice(const std::string& path, const SliceData& s) {
     }
   }
 
-  const int margin = 16;
-  const std::string line1 = "blue inside (s<0)  red outside (s>0)  black s=0";
-  char where[128];
-  std::snprintf(where, sizeof where, "slice %c=%s (plane %zu/%zu)", s.axis_name,
-                number(s.plane).c_str(), s.plane_index + 1, s.plane_count);
-  const int text_w = std::max(Image::text_width(line1), Image::text_width(where));
-  const int width = std::max(pw, text_w) + 2 * margin;
-  const int bar_h = 18;
-  const int height = margin + ph + margin + bar_h + 6 + 3 * Image::line + margin;
+  // The scale bar: a round length (1, 2 or 5 times a power of ten) near a quarter of the plot.
+  const double target = 0.25 * std::max(lu, lv) * double(pw) / double(std::max(pw, ph));
+  const double p10 = std::pow(10.0, std::floor(std::log10(target)));
+  double scale_len = p10;
+  for (double f : {2.0, 5.0, 10.0})
+    if (f * p10 <= target) scale_len = f * p10;
+  const int scale_px = std::max(2, int(std::lround(scale_len * px_per_unit)));
+
+  // No text is drawn (the numbers are in the file's tEXt chunks and in --json): the plot, a scale
+  // bar under it, and the colour bar with ticks at -inside scale, 0 and +outside scale.
+  const int margin = 16, bar_h = 18, scale_h = 10;
+  const int width = pw + 2 * margin;
+  const int height = margin + ph + 8 + scale_h + 10 + bar_h + margin;
   Image img(width, height);
-  const int x0 = (width - pw) / 2, y0 = margin;
+  const int x0 = margin, y0 = margin;
   const double period = m / 8; // faint bands every m/8 of distance
   for (int y = 0; y < ph; ++y)
     for (int x = 0; x < pw; ++x) {
@@ -241,8 +182,16 @@ PngInfo write_png_slice(const std::string& path, const SliceData& s) {
     img.set(x0 - 1, y0 + y, {60, 60, 60});
     img.set(x0 + pw, y0 + y, {60, 60, 60});
   }
-  // Legend: a colour bar from -m to +m with ticks and labels.
-  const int bw = width - 2 * margin, bx = margin, by = y0 + ph + margin;
+  // Scale bar: scale_px pixels long (scale_len in the input's units), end ticks.
+  const int sy = y0 + ph + 8;
+  for (int x = 0; x < scale_px; ++x)
+    for (int y = 4; y < 7; ++y) img.set(x0 + x, sy + y, black);
+  for (int y = 0; y < scale_h; ++y) {
+    img.set(x0, sy + y, black);
+    img.set(x0 + scale_px - 1, sy + y, black);
+  }
+  // Colour bar from -m_in (left) through 0 (centre) to +m_out (right), with those three ticks.
+  const int bw = pw, bx = x0, by = sy + scale_h + 10;
   for (int x = 0; x < bw; ++x) {
     const Rgb c = colour(2.0 * (x + 0.5) / bw - 1.0);
     for (int y = 0; y < bar_h; ++y) img.set(bx + x, by + y, c);
@@ -252,14 +201,36 @@ PngInfo write_png_slice(const std::string& path, const SliceData& s) {
     img.set(bx + bw / 2, by + y, black);
     img.set(bx + bw - 1, by + y, black);
   }
-  const int ty = by + bar_h + 6;
-  const Rgb ink{20, 20, 20};
-  const std::string lo = number(-m_in), hi = "+" + number(m_out);
-  img.text(bx, ty, lo, ink);
-  img.text(bx + bw / 2 - Image::text_width("0") / 2, ty, "0", ink);
-  img.text(bx + bw - Image::text_width(hi), ty, hi, ink);
-  img.text(bx, ty + Image::line, line1, ink);
-  img.text(bx, ty + 2 * Image::line, where, ink);
+
+  PngInfo out;
+  out.width = img.width();
+  out.height = img.height();
+  out.inside_scale = m_in;
+  out.outside_scale = m_out;
+  out.scale_bar = scale_len;
+  out.scale_bar_pixels = scale_px;
+  out.axis = s.axis_name;
+  out.plane = s.plane;
+  out.plane_index = s.plane_index;
+  out.plane_count = s.plane_count;
+  // The legend as text, in the file (PNG tEXt chunks: shown by image viewers' "properties").
+  char where[128];
+  std::snprintf(where, sizeof where, "%c = %s (plane %zu of %zu)", s.axis_name,
+                number(s.plane).c_str(), s.plane_index + 1, s.plane_count);
+  const std::string colours = "blue inside (S < 0) to white (S = 0) to red outside (S > 0); "
+                              "left end of the colour bar " +
+                              number(-m_in) + ", centre 0, right end +" + number(m_out) +
+                              "; black line: S = 0; faint bands every " + number(period);
+  const std::string scale = number(scale_len) + " (input units), the bar under the plot";
+  const std::string title = std::string("ebgeom signed distance slice ") + where;
+  const std::vector<std::pair<std::string, std::string>> text = {
+      {"Title", title},
+      {"Software", std::string("ebgeom ") + EBGEOM_VERSION_STRING},
+      {"Description", colours},
+      {"ebgeom:slice", where},
+      {"ebgeom:colour_min", number(-m_in)},
+      {"ebgeom:colour_max", number(m_out)},
+      {"ebgeom:scale_bar", scale}};
 
   ebgeom::detail::AtomicFile file(path);
   if (!file.is_open()) fail(exit_output, file.open_error().what());
@@ -277,13 +248,21 @@ PngInfo write_png_slice(const std::string& path, const SliceData& s) {
   png_set_IHDR(png, info, png_uint_32(img.width()), png_uint_32(img.height()), 8,
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
+  std::vector<png_text> chunks(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    chunks[i].compression = PNG_TEXT_COMPRESSION_NONE;
+    chunks[i].key = const_cast<png_charp>(text[i].first.c_str());
+    chunks[i].text = const_cast<png_charp>(text[i].second.c_str());
+    chunks[i].text_length = text[i].second.size();
+  }
+  png_set_text(png, info, chunks.data(), int(chunks.size()));
   png_write_info(png, info);
   for (int y = 0; y < img.height(); ++y) png_write_row(png, const_cast<png_bytep>(img.row(y)));
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   if (auto ok = file.close(); !ok) fail(exit_output, ok.error().what());
   if (auto ok = file.commit(); !ok) fail(exit_output, ok.error().what());
-  return {img.width(), img.height()};
+  return out;
 }
 
 } // namespace ebgeom::cli

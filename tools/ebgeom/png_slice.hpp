@@ -2,9 +2,9 @@
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // PNG slice of a grid (dense, or any with a value per sample): a diverging colour map (blue inside,
-// red outside, white at zero), faint distance bands, the zero level set in black, and a legend
-// (colour bar with its scale, the meaning of the colours and the slice position). Written with
-// libpng.
+// red outside, white at zero), faint distance bands, the zero level set in black, a scale bar and
+// a colour bar. No text is drawn: the legend (colour scale, slice position, scale bar length) is
+// in the PNG's tEXt chunks and in `PngInfo` (for --json). Written with libpng.
 
 #include <cmath>
 #include <string>
@@ -35,9 +35,16 @@ struct SliceData {
   std::size_t plane_index = 0, plane_count = 1;
 };
 
-/// Size of the written image.
+/// The written image: its size and its legend.
 struct PngInfo {
   int width = 0, height = 0;
+  double inside_scale = 0;  ///< |S| at the left end of the colour bar (full blue)
+  double outside_scale = 0; ///< S at the right end (full red)
+  double scale_bar = 0;     ///< length of the scale bar, in the input's units
+  int scale_bar_pixels = 0;
+  char axis = 'z'; ///< the slice: axis, coordinate, 0-based plane index of plane_count
+  double plane = 0;
+  std::size_t plane_index = 0, plane_count = 1;
 };
 
 /// Renders and writes `slice` to `path` (atomically). Throws CliError (output) on failure.

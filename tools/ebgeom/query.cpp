@@ -14,6 +14,7 @@
 #include "ebgeom/eval/write_grid.hpp"
 #include "grid_job.hpp"
 #include "npy.hpp"
+#include "progress.hpp"
 #include "scene.hpp"
 
 namespace ebgeom::cli {
@@ -71,8 +72,19 @@ int run_query(const QueryOptions& o) {
   ExecOptions ex;
   ex.threads = o.threads;
   std::vector<double> d(n);
-  if (auto ok = evaluate(prog, Span<const Vec3<double>>(pts), Span<double>(d), ex); !ok)
-    fail(exit_failure, ok.error().what());
+  {
+    // In chunks, to show progress (each point's value does not depend on the chunking).
+    Progress bar("querying", !o.quiet && !o.json && stderr_is_terminal());
+    const std::size_t chunk = bar.enabled() ? std::max<std::size_t>(n / 100, 1 << 14) : n;
+    for (std::size_t b = 0; b < n; b += chunk) {
+      const std::size_t e = std::min(n, b + chunk);
+      if (auto ok = evaluate(prog, Span<const Vec3<double>>(pts.data() + b, e - b),
+                             Span<double>(d.data() + b, e - b), ex);
+          !ok)
+        fail(exit_failure, ok.error().what());
+      bar.update(e, n);
+    }
+  }
   std::vector<double> cp, nm;
   const bool want_geo = !o.closest.empty() || !o.normals.empty();
   if (want_geo) {
@@ -187,7 +199,7 @@ Subcommand add_query(CLI::App& app) {
   sub->add_option("--threads", o->threads, "threads (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
   sub->add_flag("--json", o->json, "print a JSON summary on stdout");
-  sub->add_flag("-q,--quiet", o->quiet, "no summary");
+  sub->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
   sub->footer(
       "Example:\n  python -c \"import numpy as np; np.save('p.npy', np.random.rand(1000, 3))\"\n"
       "  ebgeom query bunny.obj --points p.npy -o d.npy --closest c.npy --normals n.npy");

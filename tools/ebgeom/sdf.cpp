@@ -14,6 +14,7 @@
 #include "npz.hpp"
 #include "scene.hpp"
 #include "sdf_job.hpp"
+#include "vdb/vdb_output.hpp"
 
 namespace ebgeom::cli {
 
@@ -29,16 +30,22 @@ template <class T> struct SampledGrid {
 template <class T> int run_sdf_as(const SdfOptions& o) {
   const bool scene = is_scene_path(o.input);
   const SignMode sign = parse_sign_mode(o.sign, exit_usage, "--sign");
-  const bool sparse = is_npz_path(o.output);
+  // .npz: the sparse narrow band with --band, otherwise the dense grid with its geometry
+  // .vdb: an OpenVDB level set of the band
+  const bool vdb = is_vdb_path(o.output);
+  const bool sparse = (is_npz_path(o.output) && o.band > 0) || vdb;
+  const bool dense_npz = is_npz_path(o.output) && !sparse;
   auto fmt = grid_format_of(o.output);
-  if (!fmt && !sparse)
+  if (!fmt && !is_npz_path(o.output) && !vdb)
     fail(exit_usage, o.output +
-                         ": unknown output format; expected an extension .vti, .npy, .raw or "
-                         ".npz (sparse narrow band, with --band)");
-  if (sparse && !(o.band > 0))
-    fail(exit_usage, o.output +
-                         ": .npz is the sparse narrow-band output and needs --band W (W > 0); "
-                         "for a dense grid use .vti, .npy or .raw");
+                         ": unknown output format; expected an extension .vti, .npy, .raw, "
+                         ".npz (dense, or the sparse narrow band with --band) or .vdb (OpenVDB "
+                         "level set, with --band)");
+  if (vdb && !(o.band > 0))
+    fail(exit_usage, o.output + ": .vdb is an OpenVDB narrow-band level set and needs --band W "
+                                "(W > 0; the background value is W cell widths)");
+  if (vdb && !vdb_available())
+    fail(exit_usage, write_vdb(o.output, SparseGrid<T>{}).error().what());
   SliceSpec slice;
   if (!o.png.empty()) slice = parse_slice(o.slice);
   require_input_file(o.input);
@@ -47,8 +54,7 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     auto same = [&](const std::string& out) {
       return std::filesystem::exists(out) && std::filesystem::equivalent(out, o.input, ec);
     };
-    if (same(o.output) ||
-        (!sparse && *fmt == GridFormat::raw && same(raw_sidecar_path(o.output))) ||
+    if (same(o.output) || (fmt && *fmt == GridFormat::raw && same(raw_sidecar_path(o.output))) ||
         (!o.png.empty() && same(o.png)))
       fail(exit_usage, o.output + ": writing it would overwrite the input " + o.input);
   }
@@ -102,7 +108,7 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   OutputGroup outputs; // every output appears only once all are written
   if (sparse) {
     const SparseGrid<T>& g = grid.sparse;
-    auto ok = write_sparse_npz(o.output, g);
+    auto ok = vdb ? write_vdb(o.output, g) : write_sparse_npz(o.output, g);
     if (!ok) fail(exit_output, ok.error().what());
     grid.file_bytes = *ok;
     if (!o.png.empty())
@@ -113,7 +119,13 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
               slice));
   } else {
     const Span<const T> v(grid.dense);
-    write_grid_or_fail(o.output, spec, v, sizeof(T) == 4 ? DType::float32 : DType::float64);
+    if (dense_npz) {
+      auto ok = write_dense_npz(o.output, spec, v);
+      if (!ok) fail(exit_output, ok.error().what());
+      grid.file_bytes = *ok;
+    } else {
+      write_grid_or_fail(o.output, spec, v, sizeof(T) == 4 ? DType::float32 : DType::float64);
+    }
     if (!o.png.empty()) img = write_png_slice(o.png, extract_slice(spec, v, slice));
   }
   if (auto ok = outputs.commit(); !ok) fail(exit_output, ok.error().what());
@@ -148,10 +160,23 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
       j["sign_used"] = {{"mode", sign_name(prog.meshes[0]->sign())},
                         {"reason", prog.meshes[0]->sign_reason()}};
     j["threads"] = threads;
-    if (!o.png.empty()) j["png"] = {{"path", o.png}, {"width", img.width}, {"height", img.height}};
+    if (!o.png.empty())
+      j["png"] = {{"path", o.png},
+                  {"width", img.width},
+                  {"height", img.height},
+                  {"legend",
+                   {{"colour_min", -img.inside_scale},
+                    {"colour_max", img.outside_scale},
+                    {"scale_bar", img.scale_bar},
+                    {"scale_bar_pixels", img.scale_bar_pixels},
+                    {"slice",
+                     {{"axis", std::string(1, img.axis)},
+                      {"position", img.plane},
+                      {"index", img.plane_index},
+                      {"count", img.plane_count}}}}}};
     if (sparse) {
       const auto& g = grid.sparse;
-      j["format"] = "sparse";
+      j["format"] = vdb ? "openvdb" : "sparse";
       j["tiles"] = {g.tiles[0], g.tiles[1], g.tiles[2]};
       j["blocks"] = kept;
       j["sparse_bytes"] = g.memory_bytes();
@@ -197,7 +222,9 @@ Subcommand add_sdf(CLI::App& app) {
       "  ebgeom sdf bunny.obj -o bunny.vti --res 128\n"
       "  ebgeom sdf part.stl -o part.npy --dx 0.01 --precision double --json\n"
       "  ebgeom sdf examples/scenes/csg.json -o csg.raw --res 96 --png csg.png --slice y=0.5\n"
-      "  ebgeom sdf bunny.obj -o band.npz --res 2048 --band 3   (sparse: only the band's tiles)");
+      "  ebgeom sdf spot.obj -o band.npz --res 2048 --band 3   (sparse: only the band's tiles)\n"
+      "  ebgeom sdf spot.obj -o spot.vdb --res 512 --cubic --band 3   (OpenVDB level set)\n"
+      "  ebgeom sdf part.stl -o part.npz --res 128 --cubic   (dense .npz with origin and spacing)");
   return {sub, [o] {
             return o->precision == "double" ? run_sdf_as<double>(*o) : run_sdf_as<float>(*o);
           }};

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,16 +34,18 @@ struct SdfOptions {
   std::string precision = "float";
   int threads = 0;
   std::string png, slice = "z";
-  bool json = false, quiet = false, nodes = false;
+  bool json = false, quiet = false, nodes = false, cubic = false;
 };
 
 /// Adds the options of `ebgeom sdf` to `sub`, writing into `*o`, with their validation.
 inline void add_sdf_options(CLI::App* sub, const std::shared_ptr<SdfOptions>& o) {
-  sub->add_option("INPUT", o->input, "mesh file (STL, PLY, OBJ, VTK) or scene file (.json)")
+  sub->add_option("INPUT", o->input, "mesh file (STL, PLY, OBJ, OFF, VTK) or scene file (.json)")
       ->required();
-  sub->add_option("-o,--output", o->output,
-                  "output grid: .vti (ParaView), .npy (NumPy, shape (NZ, NY, NX)), .raw "
-                  "(with a .json sidecar) or .npz (sparse narrow band of 8^3 tiles, needs --band)")
+  sub->add_option(
+         "-o,--output", o->output,
+         "output grid: .vti (ParaView), .npy (NumPy, shape (NZ, NY, NX)), .raw "
+         "(with a .json sidecar), .npz (the grid with its origin and spacing; with --band the "
+         "sparse narrow band of 8^3 tiles) or .vdb (OpenVDB level set, needs --band)")
       ->required();
   auto* res = sub->add_option("--res", o->res,
                               "N cells on every axis, or NX NY NZ (default 64; cell-centred)")
@@ -50,6 +53,10 @@ inline void add_sdf_options(CLI::App* sub, const std::shared_ptr<SdfOptions>& o)
   auto* dx = sub->add_option("--dx", o->dx, "cubic cells of size H (the box grows to fit)")
                  ->check(CLI::PositiveNumber);
   res->excludes(dx);
+  sub->add_flag("--cubic", o->cubic,
+                "cubic cells: --res N (or 64) cells on the longest axis, the other axes get as "
+                "many cells of that size as cover the box (which grows to fit)")
+      ->excludes(dx);
   sub->add_option("--box", o->box, "X0 Y0 Z0 X1 Y1 Z1 (default: bounding box + --pad)")
       ->expected(6);
   sub->add_option("--pad", o->pad, "padding per side, as a fraction of the extent")
@@ -77,6 +84,8 @@ inline void add_sdf_options(CLI::App* sub, const std::shared_ptr<SdfOptions>& o)
   sub->callback([o] {
     if (!o->res.empty() && o->res.size() != 1 && o->res.size() != 3)
       throw CLI::ValidationError("--res", "expects N or NX NY NZ");
+    if (o->cubic && o->res.size() == 3)
+      throw CLI::ValidationError("--cubic", "takes one --res N (cells on the longest axis)");
     for (std::size_t n : o->res)
       if (n < 1 || n > (std::size_t(1) << 21))
         throw CLI::ValidationError("--res", "each resolution must be in 1..2097152");
@@ -106,14 +115,26 @@ template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bou
     for (int a = 0; a < 3; ++a) pad[a] = T(o.pad) * (e[a] > big * T(1e-3) ? e[a] : big);
     spec.box = Aabb<T>(bounds.lo - pad, bounds.hi + pad);
   }
-  if (o.dx > 0) {
+  double dx = o.dx;
+  if (o.cubic) {
+    // the cell size that puts N cells on the longest axis
+    const std::size_t n = o.res.empty() ? 64 : o.res[0];
+    const std::size_t cells = o.nodes ? n - 1 : n;
+    if (cells < 1) fail(exit_usage, "--cubic with --nodes needs --res N >= 2");
+    dx = double(max_component(spec.box.extent())) / double(cells);
+  }
+  if (dx > 0) {
     const Vec3<T> e = spec.box.extent();
     for (int a = 0; a < 3; ++a) {
-      const double n = std::ceil(double(e[a]) / o.dx - 1e-9);
+      // --cubic: the extents are of T precision, so a whole number of cells may come out a few
+      // ulps above it; a relative tolerance keeps it whole
+      const double x = double(e[a]) / dx;
+      const double tol = o.cubic ? 4 * double(std::numeric_limits<T>::epsilon()) * x : 1e-9;
+      const double n = std::ceil(x - tol);
       if (n > double(1 << 21)) fail(exit_usage, "--dx is too small for the box (over 2^21 cells)");
       spec.dims[a] = std::max<std::size_t>(1, std::size_t(n)) + (o.nodes ? 1 : 0);
       const std::size_t cells = o.nodes ? spec.dims[a] - 1 : spec.dims[a];
-      spec.box.hi[a] = spec.box.lo[a] + T(double(std::max<std::size_t>(cells, 1)) * o.dx);
+      spec.box.hi[a] = spec.box.lo[a] + T(double(std::max<std::size_t>(cells, 1)) * dx);
     }
   } else if (o.res.size() == 3) {
     spec.dims = {{o.res[0], o.res[1], o.res[2]}};

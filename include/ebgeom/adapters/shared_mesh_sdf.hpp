@@ -34,7 +34,7 @@ make_shared_mesh_sdf(const PolygonSoup<T>& soup,
   return SharedMeshSdf<T>(std::make_shared<const MeshSdf<T>>(std::move(sdf).value()));
 }
 
-/// Reads the mesh file `path` (STL, PLY, OBJ or VTK: `io::read_mesh`) and builds its shared
+/// Reads the mesh file `path` (STL, PLY, OBJ, OFF or VTK: `io::read_mesh`) and builds its shared
 /// `MeshSdf<T>`. Errors: the reader's (converted to `Error`, message with path and location) or
 /// the build's. The file's bytes and the polygon soup are freed before returning.
 template <class T>

@@ -19,6 +19,7 @@
 
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/io/obj.hpp"
+#include "ebgeom/io/off.hpp"
 #include "ebgeom/io/ply.hpp"
 #include "ebgeom/io/read_options.hpp"
 #include "ebgeom/io/stl.hpp"
@@ -115,6 +116,7 @@ inline MeshFormat format_from_extension(const std::string& path) noexcept {
   if (iequals(ext, "ply")) return MeshFormat::ply;
   if (iequals(ext, "obj")) return MeshFormat::obj;
   if (iequals(ext, "vtk")) return MeshFormat::vtk;
+  if (iequals(ext, "off")) return MeshFormat::off;
   return MeshFormat::unknown;
 }
 
@@ -147,8 +149,9 @@ inline bool looks_like_obj(std::string_view t) noexcept {
 
 /// Detects the format of `bytes`, by content first: a binary STL by the exact size rule
 /// (84 + 50 n == size), `ply` on the first line, `# vtk` on the first line, `solid` as the first
-/// word (ASCII STL), an OBJ keyword (`v`, `f`, `o`, `g`, `vn`, ...) as the first statement after
-/// comments. Then by the extension of `path` (case-insensitive `.stl .ply .obj .vtk`); then a
+/// word (ASCII STL), an OFF keyword (`OFF`, `COFF`, `NOFF`, `OFF BINARY`, ...) as the first word,
+/// an OBJ keyword (`v`, `f`, `o`, `g`, `vn`, ...) as the first statement after
+/// comments. Then by the extension of `path` (case-insensitive `.stl .ply .obj .vtk .off`); then a
 /// binary STL with trailing bytes. Returns `unknown` otherwise. O(1) except the OBJ probe
 /// (at most 64 KiB).
 inline MeshFormat detect_format(ByteView bytes, const std::string& path = {}) noexcept {
@@ -164,6 +167,7 @@ inline MeshFormat detect_format(ByteView bytes, const std::string& path = {}) no
     return MeshFormat::ply;
   if (t.size() >= 5 && detail::iequals(t.substr(0, 5), "# vtk")) return MeshFormat::vtk;
   if (detail::starts_with_solid(t)) return MeshFormat::stl;
+  if (is_off(t)) return MeshFormat::off;
   if (detail::looks_like_obj(t)) return MeshFormat::obj;
   const MeshFormat ext = detail::format_from_extension(path);
   if (ext != MeshFormat::unknown) return ext;
@@ -172,8 +176,8 @@ inline MeshFormat detect_format(ByteView bytes, const std::string& path = {}) no
 }
 
 /// Reads a mesh from memory: `opt.format`, or the detected format (`detect_format(bytes,
-/// opt.path)`), then `parse_stl`, `parse_ply`, `parse_obj` or `parse_vtk`. Errors: `empty` for
-/// no bytes, `bad_magic` when no format is recognised, otherwise the reader's.
+/// opt.path)`), then `parse_stl`, `parse_ply`, `parse_obj`, `parse_vtk` or `parse_off`. Errors:
+/// `empty` for no bytes, `bad_magic` when no format is recognised, otherwise the reader's.
 template <class T>
 Result<PolygonSoup<T>, ParseError> parse_mesh(ByteView bytes, const ReadOptions& opt = {}) {
   if (bytes.empty()) return make_parse_error(ErrorCode::empty, opt.path, 0, 0, "empty input");
@@ -188,11 +192,13 @@ Result<PolygonSoup<T>, ParseError> parse_mesh(ByteView bytes, const ReadOptions&
     return parse_obj<T>(bytes, opt);
   case MeshFormat::vtk:
     return parse_vtk<T>(bytes, opt);
+  case MeshFormat::off:
+    return parse_off<T>(bytes, opt);
   case MeshFormat::unknown:
     break;
   }
   return make_parse_error(ErrorCode::bad_magic, opt.path, 0, 0,
-                          "not a recognised mesh format (STL, PLY, OBJ or legacy VTK)");
+                          "not a recognised mesh format (STL, PLY, OBJ, OFF or legacy VTK)");
 }
 
 /// Reads the mesh file `path` (see `parse_mesh`). `opt.path` defaults to `path` for messages.

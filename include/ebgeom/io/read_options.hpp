@@ -16,9 +16,9 @@ using ByteView = std::string_view;
 
 /// The mesh file formats ebgeom reads. `unknown` means "detect" in options and "not recognised"
 /// in results.
-enum class MeshFormat : std::uint8_t { unknown = 0, stl, ply, obj, vtk };
+enum class MeshFormat : std::uint8_t { unknown = 0, stl, ply, obj, vtk, off };
 
-/// Stable lower-case name ("stl", "ply", "obj", "vtk", "unknown").
+/// Stable lower-case name ("stl", "ply", "obj", "vtk", "off", "unknown").
 inline const char* to_string(MeshFormat f) noexcept {
   switch (f) {
   case MeshFormat::stl:
@@ -29,6 +29,8 @@ inline const char* to_string(MeshFormat f) noexcept {
     return "obj";
   case MeshFormat::vtk:
     return "vtk";
+  case MeshFormat::off:
+    return "off";
   case MeshFormat::unknown:
     break;
   }

@@ -2,8 +2,9 @@
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
-/// Mesh writers: STL (binary, ASCII), PLY (binary little-endian, ASCII), OBJ and legacy VTK
-/// (BINARY, ASCII). `encode_mesh` builds the bytes in memory; `write_mesh` writes a file.
+/// Mesh writers: STL (binary, ASCII), PLY (binary little-endian, ASCII), OBJ, OFF (ASCII) and
+/// legacy VTK (BINARY, ASCII). `encode_mesh` builds the bytes in memory; `write_mesh` writes a
+/// file.
 
 #include <charconv>
 #include <cmath>
@@ -19,7 +20,7 @@
 
 namespace ebgeom::io {
 
-/// Binary or text output (OBJ is always text).
+/// Binary or text output (OBJ and OFF are always text).
 enum class Encoding : std::uint8_t { binary, ascii };
 
 /// What `encode_mesh`/`write_mesh` produce.
@@ -29,6 +30,11 @@ struct WriteOptions {
   Encoding encoding = Encoding::binary;
 };
 
+/// The encoding `format` really gets when `requested` is asked for (OBJ and OFF are text).
+inline Encoding effective_encoding(MeshFormat format, Encoding requested) noexcept {
+  return format == MeshFormat::obj || format == MeshFormat::off ? Encoding::ascii : requested;
+}
+
 namespace detail {
 
 template <class V> inline void append_number(std::string& out, V v) {
@@ -37,11 +43,20 @@ template <class V> inline void append_number(std::string& out, V v) {
   out.append(buf, std::size_t(r.ptr - buf));
 }
 
-template <class T> inline Result<Ok> check_writable(const PolygonSoup<T>& soup) {
+/// Checks that `soup` can be written; `float_coordinates`: the format stores float, so every
+/// coordinate must be finite once rounded to float (a double 1e300 would become infinity).
+template <class T>
+inline Result<Ok> check_writable(const PolygonSoup<T>& soup, bool float_coordinates) {
   if (soup.face_count() == 0) return make_error(ErrorCode::empty, "mesh without faces");
-  for (const Vec3<T>& v : soup.vertices)
+  for (std::size_t i = 0; i < soup.vertex_count(); ++i) {
+    const Vec3<T>& v = soup.vertices[i];
     if (!all_finite(v))
       return make_error(ErrorCode::invalid_argument, "mesh has a non-finite vertex");
+    if (float_coordinates && !all_finite(Vec3<float>::from(v)))
+      return make_error(ErrorCode::invalid_argument, "vertex ", i, " (", v.x, ", ", v.y, ", ", v.z,
+                        ") is outside the range of float (about 3.4e38), which this format "
+                        "stores; choose PLY, OBJ, OFF or VTK to keep double coordinates");
+  }
   for (std::size_t f = 0; f < soup.face_count(); ++f) {
     if (soup.face_size(f) < 3)
       return make_error(ErrorCode::invalid_argument, "face ", f, " has fewer than 3 vertices");
@@ -60,10 +75,12 @@ template <class T> std::string encode_stl(const PolygonSoup<T>& soup, Encoding e
     for (std::size_t f = 0; f < soup.face_count(); ++f) {
       const auto c = soup.face(f);
       for (std::size_t k = 2; k < c.size(); ++k) { // fan
-        const Vec3<float> a = Vec3<float>::from(soup.vertices[c[0]]);
-        const Vec3<float> b = Vec3<float>::from(soup.vertices[c[k - 1]]);
-        const Vec3<float> d = Vec3<float>::from(soup.vertices[c[k]]);
-        fn(normalized(cross(b - a, d - a)), a, b, d);
+        const Vec3<double> a = Vec3<double>::from(soup.vertices[c[0]]);
+        const Vec3<double> b = Vec3<double>::from(soup.vertices[c[k - 1]]);
+        const Vec3<double> d = Vec3<double>::from(soup.vertices[c[k]]);
+        // the normal in double: a cross product of float coordinates near 1e20 overflows
+        fn(Vec3<float>::from(normalized(cross(b - a, d - a))), Vec3<float>::from(a),
+           Vec3<float>::from(b), Vec3<float>::from(d));
       }
     }
   };
@@ -178,6 +195,31 @@ template <class T> std::string encode_obj(const PolygonSoup<T>& soup) {
   return out;
 }
 
+template <class T> std::string encode_off(const PolygonSoup<T>& soup) {
+  std::string out = "OFF\n# written by ebgeom\n";
+  append_number(out, soup.vertex_count());
+  out += ' ';
+  append_number(out, soup.face_count());
+  out += " 0\n";
+  for (const Vec3<T>& v : soup.vertices) {
+    append_number(out, v.x);
+    out += ' ';
+    append_number(out, v.y);
+    out += ' ';
+    append_number(out, v.z);
+    out += '\n';
+  }
+  for (std::size_t f = 0; f < soup.face_count(); ++f) {
+    append_number(out, soup.face_size(f));
+    for (Index i : soup.face(f)) {
+      out += ' ';
+      append_number(out, i);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
 template <class T> std::string encode_vtk(const PolygonSoup<T>& soup, Encoding enc) {
   const bool bin = enc == Encoding::binary;
   std::string out = "# vtk DataFile Version 3.0\nwritten by ebgeom\n";
@@ -226,13 +268,14 @@ template <class T> std::string encode_vtk(const PolygonSoup<T>& soup, Encoding e
 /// Encodes `soup` as `opt.format` (which must not be `unknown`) with `opt.encoding`. STL
 /// stores float coordinates and fan-triangulates polygons (normals from the winding); PLY
 /// stores T-precision coordinates and `list uchar uint` faces (`list uint uint` when a face has
-/// more than 255 corners); OBJ and VTK store T-precision coordinates and polygons. Text numbers
+/// more than 255 corners); OBJ, OFF (always ASCII) and VTK store T-precision coordinates and
+/// polygons. `effective_encoding` says what a format/encoding pair really writes. Text numbers
 /// use the shortest form that reads back exactly. Errors: `invalid_argument` (unknown format, a
-/// face with fewer than 3 corners, an index out of range, a non-finite vertex), `empty` (no
-/// faces). O(size).
+/// face with fewer than 3 corners, an index out of range, a non-finite vertex, or for STL a
+/// coordinate outside the range of float), `empty` (no faces). O(size).
 template <class T>
 Result<std::string> encode_mesh(const PolygonSoup<T>& soup, const WriteOptions& opt) {
-  auto ok = detail::check_writable(soup);
+  auto ok = detail::check_writable(soup, opt.format == MeshFormat::stl);
   if (!ok) return ok.error();
   switch (opt.format) {
   case MeshFormat::stl:
@@ -241,6 +284,8 @@ Result<std::string> encode_mesh(const PolygonSoup<T>& soup, const WriteOptions& 
     return detail::encode_ply(soup, opt.encoding);
   case MeshFormat::obj:
     return detail::encode_obj(soup);
+  case MeshFormat::off:
+    return detail::encode_off(soup);
   case MeshFormat::vtk:
     return detail::encode_vtk(soup, opt.encoding);
   case MeshFormat::unknown:

@@ -120,6 +120,67 @@ text("vtk_bad_magic.vtk", "# vtx DataFile Version 3.0\n", "bad_magic", 1)
 text("vtk_huge_points.vtk", VTK_HEAD.replace("POINTS 4", "POINTS 4000000000"), "size_mismatch", 5)
 text("vtk_unknown_section.vtk", VTK_HEAD + "POLYHEDRA 1 4\n", "syntax", 7)
 
+# ---- OFF ----
+OFF_VERTS = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+OFF_FACES = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"
+TET_OFF = "OFF\n4 4 6\n" + OFF_VERTS + OFF_FACES  # lines: 1 OFF, 2 counts, 3-6 vertices, 7-10 faces
+text("off_comments_bom_crlf.off", "# a tetrahedron\nOFF # keyword\n\n4 4 6 # counts\n# vertices\n" +
+     OFF_VERTS + "\n" + OFF_FACES, "ok", crlf=True, bom=True)
+text("off_colours.off", "COFF\n4 4 6\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n"
+     "0 0 1 9 9 9 255\n3 0 2 1 1 0 0\n3 0 1 3 0.5 0.5 0.5 1\n3 1 2 3\n3 0 3 2 7\n", "ok")
+text("off_normals.off", "NOFF\n4 4 0\n0 0 0 0 0 -1\n1 0 0 1 0 0\n0 1 0 0 1 0\n0 0 1 0 0 1\n" +
+     OFF_FACES, "ok")
+text("off_counts_on_keyword_line.off", "OFF 4 4\n" + OFF_VERTS + OFF_FACES, "ok")
+
+
+def off_binary(verts, faces, counts=None):
+    nv, nf = counts if counts else (len(verts), len(faces))
+    out = b"OFF BINARY\n" + struct.pack(">3i", nv, nf, 0)
+    for v in verts:
+        out += struct.pack(">3f", *v)
+    for f in faces:
+        out += struct.pack(">i", len(f)) + struct.pack(">%di" % len(f), *f) + struct.pack(">i", 0)
+    return out
+
+
+OFF_V = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+OFF_F = [(0, 2, 1), (0, 1, 3), (1, 2, 3), (0, 3, 2)]
+off_bin = off_binary(OFF_V, OFF_F)  # 11 header + 12 counts + 48 vertices + 4 faces of 20 bytes
+binary("off_binary_ok.off", off_bin, "ok")
+text("off_bad_magic.off", "OFX\n4 4 6\n" + OFF_VERTS + OFF_FACES, "bad_magic", 1)
+text("off_4d.off", "4OFF\n4 4 6\n" + OFF_VERTS + OFF_FACES, "unsupported", 1)
+text("off_no_counts.off", "OFF\n", "truncated", 2)
+text("off_truncated_counts.off", "OFF\n4", "truncated", 2)
+text("off_count_not_a_number.off", TET_OFF.replace("4 4 6", "four 4 6"), "bad_number", 2)
+text("off_negative_count.off", TET_OFF.replace("4 4 6", "-4 4 6"), "bad_number", 2)
+text("off_extra_count.off", TET_OFF.replace("4 4 6", "4 4 6 7"), "syntax", 2)
+text("off_huge_vertex_count.off", TET_OFF.replace("4 4 6", "4000000000 4 6"), "size_mismatch", 2)
+text("off_huge_face_count.off", TET_OFF.replace("4 4 6", "4 1099511627776 6"), "size_mismatch", 2)
+text("off_count_overflow.off", TET_OFF.replace("4 4 6", "4 99999999999999999999999 6"), "bad_number", 2)
+text("off_counts_lie.off", "OFF\n4 5 6\n" + OFF_VERTS.replace("0 ", "0.000 ") + OFF_FACES,
+     "truncated", 11)
+text("off_no_faces.off", TET_OFF.replace("4 4 6", "4 0 6"), "empty", 2)
+text("off_nan.off", TET_OFF.replace("0 1 0", "0 nan 0"), "non_finite", 5)
+text("off_overflow.off", TET_OFF.replace("0 1 0", "0 1e999 0"), "bad_number", 5)
+text("off_missing_coordinate.off", TET_OFF.replace("1 0 0\n", "1 0\n"), "syntax", 4)
+text("off_bad_index.off", TET_OFF.replace("3 1 2 3", "3 1 2 4"), "bad_index", 9)
+text("off_negative_index.off", TET_OFF.replace("3 1 2 3", "3 1 -2 3"), "bad_index", 9)
+text("off_index_not_a_number.off", TET_OFF.replace("3 1 2 3", "3 1 x 3"), "bad_number", 9)
+text("off_face_two.off", TET_OFF.replace("3 0 1 3", "2 0 1"), "degenerate", 8)
+text("off_face_huge_corner_count.off", TET_OFF.replace("3 0 1 3", "99999999999 0 1 3"),
+     "size_mismatch", 8)
+text("off_face_short.off", TET_OFF.replace("3 0 1 3", "4 0 1 3"), "syntax", 8)
+binary("off_binary_nan.off", off_binary([OFF_V[0], OFF_V[1], (0, nan, 0), OFF_V[3]], OFF_F),
+       "non_finite", 23 + 24)
+binary("off_binary_bad_index.off", off_binary(OFF_V, OFF_F[:2] + [(1, 9, 3)] + OFF_F[3:]),
+       "bad_index", 71 + 40 + 8)
+binary("off_binary_truncated.off", off_bin[:-6], "truncated", 131)
+binary("off_binary_huge_count.off", off_binary(OFF_V, OFF_F, counts=(2**31 - 1, 4)),
+       "size_mismatch", 11)
+binary("off_binary_header_only.off", b"OFF BINARY\n\0\0", "truncated", 13)
+binary("off_binary_face_one.off", off_binary(OFF_V, OFF_F[:1] + [(0,)] + OFF_F[2:]), "degenerate",
+       91)
+
 binary("garbage.bin", bytes(range(7, 200)), "bad_magic", 0)
 
 open("expected.txt", "w").write("\n".join(manifest) + "\n")
