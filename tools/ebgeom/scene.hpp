@@ -9,10 +9,12 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -29,8 +31,19 @@ namespace ebgeom::cli {
 
 using Json = nlohmann::json;
 
-/// Reads and parses a JSON file. Throws CliError (input): `FILE: line L, column C: what`.
+/// JSON documents nested deeper than this are refused before a tree is built.
+inline constexpr std::size_t max_json_depth = 1000;
+
+/// Parses JSON text read from `path` (named in messages). A first, non-recursive pass rejects
+/// nesting deeper than `max_json_depth` and duplicate object keys, so every later recursive walk
+/// is bounded. Throws CliError (input): `FILE: line L, column C: what` (one short line).
+Json parse_json_text(const std::string& text, const std::string& path);
+
+/// Reads and parses a JSON file (`parse_json_text`). Throws CliError (input).
 Json read_json_file(const std::string& path);
+
+/// `s` cut to at most `max` characters with "..." in the middle (long JSON pointers, keys).
+std::string shorten(const std::string& s, std::size_t max);
 
 /// True when `path` names a scene file (extension .json).
 bool is_scene_path(const std::string& path);
@@ -42,8 +55,29 @@ struct SceneInfo {
 
 namespace detail {
 
+/// Appends the JSON text of `j` to `out` until `out` holds more than `budget` characters: O(budget)
+/// work whatever the size of `j` (no full dump of a large or deep value).
+inline void describe_into(const Json& j, std::string& out, std::size_t budget) {
+  if (out.size() > budget) return;
+  if (j.is_array() || j.is_object()) {
+    out += j.is_array() ? '[' : '{';
+    bool first = true;
+    for (auto it = j.begin(); it != j.end() && out.size() <= budget; ++it) {
+      if (!first) out += ',';
+      first = false;
+      if (j.is_object()) out += Json(it.key()).dump() + ':';
+      describe_into(*it, out, budget);
+    }
+    out += j.is_array() ? ']' : '}';
+  } else {
+    out += j.dump();
+  }
+}
+
+/// A short text of `j` for messages (at most 40 characters).
 inline std::string describe(const Json& j) {
-  std::string s = j.dump();
+  std::string s;
+  describe_into(j, s, 40);
   if (s.size() > 40) s = s.substr(0, 37) + "...";
   return s;
 }
@@ -56,7 +90,7 @@ template <class T> class SceneCompiler {
   }
 
   [[noreturn]] void bad(const std::string& ptr, const std::string& msg) const {
-    fail(exit_input, file_ + ": " + (ptr.empty() ? "/" : ptr) + ": " + msg);
+    fail(exit_input, file_ + ": " + (ptr.empty() ? "/" : shorten(ptr, 80)) + ": " + msg);
   }
 
   /// Compiles a node; returns its bounds. Tracks stack depths.
@@ -156,7 +190,32 @@ template <class T> class SceneCompiler {
     if (!std::isfinite(d) || (need == Need::positive && !(d > 0)) ||
         (need == Need::non_negative && !(d >= 0)))
       bad(where, std::string("expected ") + what + ", got " + describe(v));
+    check_magnitude(d, where);
     return T(d);
+  }
+  /// Refuses a value whose magnitude the working precision cannot carry through squared
+  /// distances (`max_magnitude<T>()`), or a non-zero value that rounds to zero in T.
+  void check_magnitude(double d, const std::string& where) const {
+    char buf[160];
+    if (std::abs(d) > max_magnitude<T>()) {
+      std::snprintf(buf, sizeof buf, "%.6g is too large for %s precision (at most %.3g)", d,
+                    precision_name<T>(), max_magnitude<T>());
+      bad(where,
+          std::string(buf) + (sizeof(T) == 4 ? "; use --precision double" : "; rescale the scene"));
+    }
+    if (d != 0 && T(d) == T(0)) {
+      std::snprintf(buf, sizeof buf, "%.6g is too small for %s precision (it rounds to 0)", d,
+                    precision_name<T>());
+      bad(where, std::string(buf) + (sizeof(T) == 4 ? "; use --precision double" : ""));
+    }
+  }
+  /// A finite number in double precision (angles, reduced before use).
+  double finite_double(const Json& j, const std::string& ptr, const char* key) const {
+    const auto it = j.find(key);
+    if (it == j.end()) bad(ptr, std::string("missing \"") + key + "\"");
+    if (!it->is_number() || !std::isfinite(it->template get<double>()))
+      bad(ptr + "/" + key, "expected a finite number, got " + describe(*it));
+    return it->template get<double>();
   }
   Vec3<T> vec3(const Json& j, const std::string& ptr, const char* key, Need need) const {
     const auto it = j.find(key);
@@ -176,7 +235,16 @@ template <class T> class SceneCompiler {
 
   Xform<T> parse_xform(const Json& j, const std::string& ptr) const {
     Xform<T> x;
-    if (j.contains("scale")) x.s = number(j, ptr, "scale", Need::positive);
+    if (j.contains("scale")) {
+      x.s = number(j, ptr, "scale", Need::positive);
+      // Points are divided by the scale: below 1 / max_magnitude they would overflow.
+      if (double(x.s) < 1 / max_magnitude<T>()) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%.6g is too small for %s precision (at least %.3g)",
+                      double(x.s), precision_name<T>(), 1 / max_magnitude<T>());
+        bad(ptr + "/scale", buf);
+      }
+    }
     if (j.contains("rotate")) {
       const Json& r = j["rotate"];
       const std::string rp = ptr + "/rotate";
@@ -188,7 +256,8 @@ template <class T> class SceneCompiler {
       Vec3<T> axis = vec3(r, rp, "axis", Need::finite);
       if (!(norm(axis) > T(0))) bad(rp + "/axis", "the rotation axis must not be zero");
       axis = normalized(axis);
-      const double ang = double(number(r, rp, "degrees", Need::finite)) * M_PI / 180.0;
+      // Reduced to (-360, 360) in double first: a huge angle in float would be inf.
+      const double ang = std::fmod(finite_double(r, rp, "degrees"), 360.0) * M_PI / 180.0;
       const T c = T(std::cos(ang)), s = T(std::sin(ang)), C = T(1) - c;
       const T x_ = axis.x, y = axis.y, z = axis.z;
       x.r = {{c + x_ * x_ * C, x_ * y * C - z * s, x_ * z * C + y * s, //

@@ -20,6 +20,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "ebgeom/core/result.hpp"
@@ -43,22 +44,30 @@ enum class SignMode : std::uint8_t {
   automatic,         ///< `pseudonormal` on valid closed meshes, `fast_winding` otherwise
 };
 
-/// Lower-case name of a mode ("pseudonormal", "winding", "fast_winding", "unsigned_distance",
-/// "automatic").
+/// The one name table of the sign modes, used by the library, the command-line tools (`--sign`)
+/// and scene files (`"sign"`): "pseudonormal", "winding", "fast-winding", "unsigned", "auto".
+inline constexpr std::pair<SignMode, const char*> sign_mode_names[] = {
+    {SignMode::pseudonormal, "pseudonormal"},
+    {SignMode::winding, "winding"},
+    {SignMode::fast_winding, "fast-winding"},
+    {SignMode::unsigned_distance, "unsigned"},
+    {SignMode::automatic, "auto"}};
+
+/// The name of a mode in `sign_mode_names` ("fast-winding" for `SignMode::fast_winding`).
 inline const char* to_string(SignMode m) noexcept {
-  switch (m) {
-  case SignMode::pseudonormal:
-    return "pseudonormal";
-  case SignMode::winding:
-    return "winding";
-  case SignMode::fast_winding:
-    return "fast_winding";
-  case SignMode::unsigned_distance:
-    return "unsigned_distance";
-  case SignMode::automatic:
-    return "automatic";
-  }
+  for (const auto& n : sign_mode_names)
+    if (n.first == m) return n.second;
   return "?";
+}
+
+/// The mode named `name` (`sign_mode_names`; exact, case-sensitive). Error `invalid_argument`
+/// listing the names otherwise.
+inline Result<SignMode> parse_sign_mode(std::string_view name) {
+  for (const auto& n : sign_mode_names)
+    if (name == n.second) return n.first;
+  return Error{ErrorCode::invalid_argument,
+               "unknown sign mode '" + std::string(name) +
+                   "' (expected pseudonormal, winding, fast-winding, unsigned or auto)"};
 }
 
 /// The mode `automatic` resolves to, and why (one line).
