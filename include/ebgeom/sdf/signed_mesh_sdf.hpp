@@ -77,10 +77,11 @@ struct SignChoice {
 };
 
 /// What `automatic` picks for a mesh with validation report `r`: `pseudonormal` when the mesh is
-/// closed (no boundary edge), manifold (edges and vertices) and consistently oriented, otherwise
-/// `fast_winding`. The reason names the first failed condition with its count. An inward but
-/// otherwise valid mesh keeps `pseudonormal` (every mode then reports the inside as outside; fix
-/// the orientation with `orient_outward`), and the reason says so.
+/// closed (no boundary edge), manifold (edges and vertices), consistently oriented and has no two
+/// shells whose boxes overlap (nested or intersecting shells), otherwise `fast_winding`. The reason
+/// names the first failed condition with its count. An inward but otherwise valid mesh keeps
+/// `pseudonormal` (every mode then reports the inside as outside; fix the orientation with
+/// `orient_outward`), and the reason says so.
 template <class T> SignChoice choose_sign_mode(const ValidationReport<T>& r) {
   SignChoice c;
   c.mode = SignMode::fast_winding;
@@ -107,6 +108,12 @@ template <class T> SignChoice choose_sign_mode(const ValidationReport<T>& r) {
   if (!r.consistently_oriented()) {
     c.reason = "inconsistently oriented: " + std::to_string(r.inconsistent_edges.count) +
                " edges whose two faces traverse them the same way";
+    return c;
+  }
+  if (r.shells > 1 && r.shells_overlap) {
+    c.reason = std::to_string(r.shells) +
+               " closed shells with overlapping bounding boxes (nested or intersecting): the "
+               "winding number decides, the nearest shell's pseudonormal may not";
     return c;
   }
   c.mode = SignMode::pseudonormal;
