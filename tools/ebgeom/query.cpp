@@ -14,6 +14,7 @@
 #include "ebgeom/eval/write_grid.hpp"
 #include "grid_job.hpp"
 #include "npy.hpp"
+#include "number_options.hpp"
 #include "scene.hpp"
 
 namespace ebgeom::cli {
@@ -179,7 +180,7 @@ Subcommand add_query(CLI::App& app) {
                   "(pseudonormal on closed manifold oriented meshes, fast-winding otherwise)")
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_rule(NumberRule::non_negative, /*integer=*/true));
   sub->add_flag("--json", o->json, "print a JSON summary on stdout");
   sub->add_flag("-q,--quiet", o->quiet, "no summary");
   sub->footer(

@@ -48,10 +48,38 @@ std::string shorten(const std::string& s, std::size_t max);
 /// True when `path` names a scene file (extension .json).
 bool is_scene_path(const std::string& path);
 
+/// The sign mode one mesh of a scene got, and why.
+struct MeshSignUse {
+  std::string where;  ///< JSON pointer of the mesh node
+  std::string source; ///< mesh file, or "generate: NAME"
+  SignMode requested = SignMode::automatic, used = SignMode::automatic;
+  std::string reason; ///< "requested", or what `auto` found
+};
+
 /// Facts about a compiled scene, for summaries.
 struct SceneInfo {
   std::size_t nodes = 0, primitives = 0, meshes = 0;
+  std::vector<MeshSignUse> mesh_signs; ///< one per mesh node, in file order
 };
+
+/// `--json`'s "meshes": [{"node", "source", "sign", "sign_used", "reason"}] of a scene.
+inline Json mesh_signs_json(const SceneInfo& info) {
+  Json a = Json::array();
+  for (const MeshSignUse& m : info.mesh_signs)
+    a.push_back({{"node", m.where.empty() ? "/" : m.where},
+                 {"source", m.source},
+                 {"sign", to_string(m.requested)},
+                 {"sign_used", to_string(m.used)},
+                 {"reason", m.reason}});
+  return a;
+}
+
+/// The summary's lines, one per mesh: `  sign      NODE (SOURCE): MODE (REASON)`.
+inline void print_mesh_signs(const SceneInfo& info) {
+  for (const MeshSignUse& m : info.mesh_signs)
+    std::printf("  sign      %s (%s): %s (%s)\n", m.where.empty() ? "/" : m.where.c_str(),
+                m.source.c_str(), to_string(m.used), m.reason.c_str());
+}
 
 namespace detail {
 
@@ -116,6 +144,7 @@ template <class T> class SceneCompiler {
       prog_.max_points = std::max(prog_.max_points, points_);
     }
     Aabb<T> b = body(type, j, ptr, kind);
+    const bool bounded = finite_box(b);
     if (has_xform) {
       prog_.code.push_back({Op::pop_xform, xi, 0});
       --points_;
@@ -133,6 +162,17 @@ template <class T> class SceneCompiler {
       // |S| - t is exact for an exact S; for a bound it may overestimate inside the shell.
       if (kind != SdfKind::exact) kind = SdfKind::implicit;
       b = b.grown(s);
+    }
+    // A transform or growth cannot make a bounded shape unbounded: only overflow can.
+    if (bounded && !finite_box(b)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "the bounds of this node overflow %s precision (transformed or grown beyond "
+                    "%.3g)%s",
+                    precision_name<T>(), double(std::numeric_limits<T>::max()),
+                    sizeof(T) == 4 ? "; use --precision double or smaller values"
+                                   : "; use smaller values");
+      bad(ptr, buf);
     }
     --depth_;
     return b;
@@ -266,6 +306,18 @@ template <class T> class SceneCompiler {
     }
     if (j.contains("translate")) x.t = vec3(j, ptr, "translate", Need::finite);
     return x;
+  }
+
+  /// Finite bounds, or the canonical empty box; false for infinite or NaN coordinates (a NaN
+  /// corner, from 0 * inf in an overflowing transform, can make a box look empty).
+  static bool finite_box(const Aabb<T>& b) {
+    const T inf = std::numeric_limits<T>::infinity();
+    bool empty = true, finite = true;
+    for (int a = 0; a < 3; ++a) {
+      empty = empty && b.lo[a] == inf && b.hi[a] == -inf;
+      finite = finite && std::isfinite(b.lo[a]) && std::isfinite(b.hi[a]);
+    }
+    return empty || finite;
   }
 
   static Aabb<T> transform_box(const Xform<T>& x, const Aabb<T>& b) {
@@ -500,6 +552,9 @@ template <class T> class SceneCompiler {
       soup = std::move(*r);
     }
     auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, label, sign));
+    info_.mesh_signs.push_back(
+        {ptr, j.contains("path") ? label : "generate: " + j["generate"].template get<std::string>(),
+         sign, sdf->sign(), sdf->sign_reason()});
     const Aabb<T> b = sdf->bounds();
     prog_.code.push_back({Op::mesh, std::uint32_t(prog_.meshes.size()),
                           sign == SignMode::unsigned_distance ? 1u : 0u});
