@@ -144,7 +144,7 @@ template <class T> class SceneCompiler {
       prog_.max_points = std::max(prog_.max_points, points_);
     }
     Aabb<T> b = body(type, j, ptr, kind);
-    const bool bounded = finite_box(b);
+    const bool bounded = !b.is_empty() && finite_box(b);
     if (has_xform) {
       prog_.code.push_back({Op::pop_xform, xi, 0});
       --points_;
@@ -164,7 +164,7 @@ template <class T> class SceneCompiler {
       b = b.grown(s);
     }
     // A transform or growth cannot make a bounded shape unbounded: only overflow can.
-    if (bounded && !finite_box(b)) {
+    if (bounded && (b.is_empty() || !finite_box(b))) { // NaN corners leave the box empty
       char buf[200];
       std::snprintf(buf, sizeof buf,
                     "the bounds of this node overflow %s precision (transformed or grown beyond "
@@ -429,7 +429,7 @@ template <class T> class SceneCompiler {
       if (c == j.end()) bad(ptr, "missing \"child\" (the node to transform)");
       return node(*c, ptr + "/child", kind);
     }
-    bad(ptr + "/type", "unknown node type \"" + type +
+    bad(ptr + "/type", "unknown node type \"" + shorten(type, 40) +
                            "\" (expected sphere, box, capsule, cylinder, cone, torus, plane, mesh, "
                            "union, intersection, difference or transform)");
   }
@@ -507,8 +507,8 @@ template <class T> class SceneCompiler {
     SignMode sign = SignMode::automatic;
     if (j.contains("sign")) {
       if (!j["sign"].is_string()) bad(ptr + "/sign", "expected a string");
-      sign =
-          parse_sign_mode(j["sign"].get<std::string>(), exit_input, file_ + ": " + ptr + "/sign");
+      sign = parse_sign_mode(j["sign"].get<std::string>(), exit_input,
+                             file_ + ": " + shorten(ptr + "/sign", 80));
     }
     PolygonSoup<T> soup;
     std::string label;
@@ -544,7 +544,7 @@ template <class T> class SceneCompiler {
       } else if (g == "icosahedron") {
         r = make_icosahedron<T>(number_or(j, ptr, "radius", Need::positive, T(1)));
       } else {
-        bad(ptr + "/generate", "unknown generator \"" + g +
+        bad(ptr + "/generate", "unknown generator \"" + shorten(g, 40) +
                                    "\" (expected icosphere, torus, box, tetrahedron, "
                                    "octahedron or icosahedron)");
       }
@@ -590,7 +590,8 @@ Program<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* in
           it.key() != "comment")
         c.bad("/" + it.key(), "unknown top-level key (expected root, version, description)");
     if (doc.contains("version") && doc["version"] != 1)
-      c.bad("/version", "unsupported scene version " + doc["version"].dump() + " (expected 1)");
+      c.bad("/version",
+            "unsupported scene version " + detail::describe(doc["version"]) + " (expected 1)");
     root = &doc["root"];
     ptr = "/root";
   }

@@ -66,7 +66,8 @@ inline Result<SignMode> parse_sign_mode(std::string_view name) {
   for (const auto& n : sign_mode_names)
     if (name == n.second) return n.first;
   return Error{ErrorCode::invalid_argument,
-               "unknown sign mode '" + std::string(name) +
+               "unknown sign mode '" + std::string(name.substr(0, 40)) +
+                   (name.size() > 40 ? "..." : "") +
                    "' (expected pseudonormal, winding, fast-winding, unsigned or auto)"};
 }
 
