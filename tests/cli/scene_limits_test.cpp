@@ -277,6 +277,14 @@ TEST(SceneSigns, JsonAndSummaryNameEachMeshSignAndWhy) {
   EXPECT_EQ(j["meshes"][1]["sign"], "winding");
   EXPECT_EQ(j["meshes"][1]["sign_used"], "winding");
   EXPECT_EQ(j["meshes"][1]["reason"], "requested");
+  // `ebgeom query --json` lists them too.
+  const double xyz[3] = {0, 0, 2};
+  write_npy_bytes(dir + "/p.npy", "<f8", "(1, 3)", xyz, sizeof xyz);
+  r = run("query '" + dir + "/s.json' --points '" + dir + "/p.npy' -o '" + dir + "/d.npy' --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto q = nlohmann::json::parse(r.out);
+  ASSERT_EQ(q["meshes"].size(), 2u) << r.out;
+  EXPECT_EQ(q["meshes"][1]["sign_used"], "winding");
   r = sdf(dir, scene);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "sign      /children/0 (generate: icosphere): pseudonormal (closed"))

@@ -45,12 +45,13 @@ int run_query(const QueryOptions& o) {
   const double t0 = now_s();
   const bool scene = is_scene_path(o.input);
   Program<double> prog;
+  SceneInfo info;
   std::shared_ptr<const CliMeshSdf<double>> mesh;
   double t1;
   if (scene) {
     const Json doc = read_json_file(o.input);
     t1 = now_s();
-    prog = compile_scene<double>(doc, o.input);
+    prog = compile_scene<double>(doc, o.input, &info);
   } else {
     PolygonSoup<double> soup = load_mesh<double>(o.input);
     t1 = now_s();
@@ -148,6 +149,7 @@ int run_query(const QueryOptions& o) {
     j["inside_fraction"] = st.inside_fraction;
     j["sign"] = sign_name(sign);
     if (mesh) j["sign_used"] = {{"mode", sign_name(mesh->sign())}, {"reason", mesh->sign_reason()}};
+    if (scene) j["meshes"] = mesh_signs_json(info);
     j["threads"] = resolve_threads(ex);
     std::printf("%s\n", j.dump(2).c_str());
   } else if (!o.quiet) {
