@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdio>
 #include <iterator>
 #include <set>
 #include <string>
@@ -114,6 +115,25 @@ std::string shorten(const std::string& s, std::size_t max) {
   return s.substr(0, head) + "..." + s.substr(s.size() - tail);
 }
 
+std::string printable(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\t')
+      out += "\\t";
+    else if (u < 0x20 || u == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", unsigned(u));
+      out += buf;
+    } else
+      out += c;
+  }
+  return out;
+}
+
 Json parse_json_text(const std::string& text, const std::string& path) {
   const char* furthest = text.data();
   CheckingSax sax;
@@ -125,8 +145,8 @@ Json parse_json_text(const std::string& text, const std::string& path) {
     // nlohmann's position counts characters read, one past the offending one.
     const std::size_t at = sax.syntax ? (sax.error_byte == 0 ? 0 : sax.error_byte - 1)
                                       : std::size_t(furthest - text.data());
-    fail(exit_input, path + ": " + line_column(text, at) + ": " +
-                         (sax.syntax ? "invalid JSON: " : "") + shorten(sax.error, 160));
+    fail(exit_input, printable(path + ": " + line_column(text, at) + ": " +
+                               (sax.syntax ? "invalid JSON: " : "") + shorten(sax.error, 160)));
   }
   try {
     return Json::parse(text, nullptr, true, /*ignore_comments=*/true);

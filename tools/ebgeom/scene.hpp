@@ -45,6 +45,10 @@ Json read_json_file(const std::string& path);
 /// `s` cut to at most `max` characters with "..." in the middle (long JSON pointers, keys).
 std::string shorten(const std::string& s, std::size_t max);
 
+/// `s` with control characters escaped (`\n`, `\t`, `\xHH`), so that a message quoting a key or
+/// file name stays on one line.
+std::string printable(const std::string& s);
+
 /// True when `path` names a scene file (extension .json).
 bool is_scene_path(const std::string& path);
 
@@ -118,7 +122,7 @@ template <class T> class SceneCompiler {
   }
 
   [[noreturn]] void bad(const std::string& ptr, const std::string& msg) const {
-    fail(exit_input, file_ + ": " + (ptr.empty() ? "/" : shorten(ptr, 80)) + ": " + msg);
+    fail(exit_input, printable(file_ + ": " + (ptr.empty() ? "/" : shorten(ptr, 80)) + ": " + msg));
   }
 
   /// Compiles a node; returns its bounds. Tracks stack depths.
@@ -507,8 +511,9 @@ template <class T> class SceneCompiler {
     SignMode sign = SignMode::automatic;
     if (j.contains("sign")) {
       if (!j["sign"].is_string()) bad(ptr + "/sign", "expected a string");
-      sign = parse_sign_mode(j["sign"].get<std::string>(), exit_input,
-                             file_ + ": " + shorten(ptr + "/sign", 80));
+      const Result<SignMode> m = ebgeom::parse_sign_mode(j["sign"].get<std::string>());
+      if (!m) bad(ptr + "/sign", m.error().what());
+      sign = *m;
     }
     PolygonSoup<T> soup;
     std::string label;
