@@ -9,6 +9,7 @@
 #include "common.hpp"
 #include "demo_scene.hpp"
 #include "grid_job.hpp"
+#include "number_options.hpp"
 #include "scene.hpp"
 
 namespace ebgeom::cli {
@@ -90,7 +91,7 @@ Subcommand add_demo(CLI::App& app) {
       ->check(CLI::Range(std::size_t(4), std::size_t(1024)))
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_rule(NumberRule::non_negative, /*integer=*/true));
   sub->add_flag("-q,--quiet", o->quiet, "no progress bar");
   sub->footer("Example:\n  ebgeom demo -o out/demo && paraview out/demo/demo.vti");
   return {sub, [o] { return run_demo(*o); }};

@@ -24,6 +24,7 @@ namespace ebgeom::cli {
 /// Summary statistics of a grid.
 struct GridStats {
   double min = 0, max = 0, inside_fraction = 0;
+  std::uint64_t non_finite = 0; ///< NaN or infinite samples (left out of min and max)
 };
 
 template <class T> GridStats grid_stats(Span<const T> v) {
@@ -32,6 +33,10 @@ template <class T> GridStats grid_stats(Span<const T> v) {
   s.max = -s.min;
   std::size_t inside = 0;
   for (T x : v) {
+    if (!std::isfinite(x)) {
+      ++s.non_finite;
+      continue;
+    }
     s.min = std::min(s.min, double(x));
     s.max = std::max(s.max, double(x));
     inside += x < 0;
@@ -68,6 +73,10 @@ template <class T> GridStats grid_stats(const SparseGrid<T>& g) {
           for (std::size_t y = 0; y < sy; ++y)
             for (std::size_t x = 0; x < sx; ++x) {
               const T val = t[x + W * (y + W * z)];
+              if (!std::isfinite(val)) {
+                ++s.non_finite;
+                continue;
+              }
               s.min = std::min(s.min, double(val));
               s.max = std::max(s.max, double(val));
               inside += val < 0;

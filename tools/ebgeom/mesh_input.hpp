@@ -3,6 +3,10 @@
 #pragma once
 // Reading meshes for the CLI and turning them into mesh SDFs, with CLI errors.
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -25,34 +29,17 @@ namespace ebgeom::cli {
 /// `ebgeom::SignMode` (sdf/signed_mesh_sdf.hpp).
 using ebgeom::SignMode;
 
-/// Parses a --sign / "sign" value: pseudonormal, winding, fast-winding, unsigned or auto.
-/// Throws CliError(`code`) prefixed by `where`.
+/// Parses a --sign / "sign" value with the library's name table (`ebgeom::parse_sign_mode`:
+/// pseudonormal, winding, fast-winding, unsigned or auto). Throws CliError(`code`) prefixed by
+/// `where`.
 inline SignMode parse_sign_mode(const std::string& s, int code, const std::string& where) {
-  if (s == "pseudonormal") return SignMode::pseudonormal;
-  if (s == "winding") return SignMode::winding;
-  if (s == "fast-winding") return SignMode::fast_winding;
-  if (s == "unsigned") return SignMode::unsigned_distance;
-  if (s == "auto") return SignMode::automatic;
-  fail(code, where + ": unknown sign mode '" + s +
-                 "' (expected pseudonormal, winding, fast-winding, unsigned or auto)");
+  Result<SignMode> m = ebgeom::parse_sign_mode(s);
+  if (!m) fail(code, where + ": " + m.error().what());
+  return *m;
 }
 
-/// The CLI spelling of a mode (the inverse of `parse_sign_mode`).
-inline const char* sign_name(SignMode m) noexcept {
-  switch (m) {
-  case SignMode::pseudonormal:
-    return "pseudonormal";
-  case SignMode::winding:
-    return "winding";
-  case SignMode::fast_winding:
-    return "fast-winding";
-  case SignMode::unsigned_distance:
-    return "unsigned";
-  case SignMode::automatic:
-    return "auto";
-  }
-  return "?";
-}
+/// The CLI spelling of a mode: the library's `to_string` (one name table).
+inline const char* sign_name(SignMode m) noexcept { return ebgeom::to_string(m); }
 
 /// The mesh SDF the CLI uses: `SignedMeshSdf<T>` (the BVH `MeshSdf<T>`'s exact distance with the
 /// chosen sign mode). Keeps the `TriangleMesh` for normals. Immutable; thread-safe queries.
@@ -105,6 +92,15 @@ template <class T> class CliMeshSdf {
   SignMode requested_ = SignMode::automatic;
 };
 
+/// The largest coordinate or length a scene or mesh may hold in precision T: squared distances
+/// between such points (and sums of three) stay finite. About 2.9e17 in float, 2.1e152 in double.
+template <class T> double max_magnitude() noexcept {
+  return std::sqrt(double(std::numeric_limits<T>::max())) / 64;
+}
+template <class T> const char* precision_name() noexcept {
+  return sizeof(T) == 4 ? "float" : "double";
+}
+
 /// Reads a mesh file (STL, PLY, OBJ, OFF, legacy VTK; format detected by content), or a glTF 2.0
 /// file by its extension (.gltf, .glb: `read_gltf`). Throws CliError (input) with the reader's
 /// `FILE: line/byte: what` message.
@@ -138,6 +134,20 @@ template <class T> PolygonSoup<T> load_mesh(const std::string& path) {
 template <class T>
 CliMeshSdf<T> build_mesh_sdf(const PolygonSoup<T>& soup, const std::string& path,
                              SignMode sign = SignMode::automatic) {
+  for (std::size_t v = 0; v < soup.vertices.size(); ++v) {
+    const Vec3<T>& p = soup.vertices[v];
+    const double m =
+        std::max({std::abs(double(p.x)), std::abs(double(p.y)), std::abs(double(p.z))});
+    if (m > max_magnitude<T>()) { // NaN is left to the mesh SDF's own check
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    ": vertex %zu has a coordinate of magnitude %.6g, too large for %s precision "
+                    "(at most %.3g)%s",
+                    v, m, precision_name<T>(), max_magnitude<T>(),
+                    sizeof(T) == 4 ? "; use --precision double" : "; rescale the mesh");
+      fail(exit_input, path + buf);
+    }
+  }
   auto sdf = CliMeshSdf<T>::build(soup, sign);
   if (!sdf) fail(exit_input, path + ": " + sdf.error().what());
   return std::move(*sdf);

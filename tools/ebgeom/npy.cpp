@@ -77,10 +77,18 @@ std::vector<Vec3<double>> read_npy_points(const std::string& path) {
   else
     bad(path, off,
         "dtype '" + descr + "' is not supported; expected float32 ('<f4') or float64 ('<f8')");
-  if (dict_value(h, "fortran_order") != "False")
+  const std::string order = dict_value(h, "fortran_order");
+  if (h.find("'fortran_order'") == std::string::npos)
+    bad(path, off, "the header has no 'fortran_order' key (expected 'fortran_order': False)");
+  if (order == "True")
     bad(path, off,
         "Fortran-order arrays are not supported; save a C-order array "
         "(numpy.ascontiguousarray)");
+  if (order != "False")
+    bad(path, off,
+        "the header's 'fortran_order' is '" +
+            (order.size() > 20 ? order.substr(0, 17) + "..." : order) +
+            "', expected False or True");
   const std::string shape = dict_value(h, "shape");
   std::vector<std::uint64_t> dims;
   {

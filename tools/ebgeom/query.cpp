@@ -14,6 +14,7 @@
 #include "ebgeom/eval/write_grid.hpp"
 #include "grid_job.hpp"
 #include "npy.hpp"
+#include "number_options.hpp"
 #include "progress.hpp"
 #include "scene.hpp"
 
@@ -47,12 +48,13 @@ int run_query(const QueryOptions& o) {
   const double t0 = now_s();
   const bool scene = is_scene_path(o.input);
   Program<double> prog;
+  SceneInfo info;
   std::shared_ptr<const CliMeshSdf<double>> mesh;
   double t1;
   if (scene) {
     const Json doc = read_json_file(o.input);
     t1 = now_s();
-    prog = compile_scene<double>(doc, o.input);
+    prog = compile_scene<double>(doc, o.input, &info);
   } else {
     PolygonSoup<double> soup = load_mesh<double>(o.input);
     t1 = now_s();
@@ -165,6 +167,7 @@ int run_query(const QueryOptions& o) {
     j["inside_fraction"] = st.inside_fraction;
     j["sign"] = sign_name(sign);
     if (mesh) j["sign_used"] = {{"mode", sign_name(mesh->sign())}, {"reason", mesh->sign_reason()}};
+    if (scene) j["meshes"] = mesh_signs_json(info);
     j["threads"] = resolve_threads(ex);
     std::printf("%s\n", j.dump(2).c_str());
   } else if (!o.quiet) {
@@ -197,7 +200,7 @@ Subcommand add_query(CLI::App& app) {
                   "(pseudonormal on closed manifold oriented meshes, fast-winding otherwise)")
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_rule(NumberRule::non_negative, /*integer=*/true));
   sub->add_flag("--json", o->json, "print a JSON summary on stdout");
   sub->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
   sub->footer(

@@ -9,10 +9,12 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -29,21 +31,85 @@ namespace ebgeom::cli {
 
 using Json = nlohmann::json;
 
-/// Reads and parses a JSON file. Throws CliError (input): `FILE: line L, column C: what`.
+/// JSON documents nested deeper than this are refused before a tree is built.
+inline constexpr std::size_t max_json_depth = 1000;
+
+/// Parses JSON text read from `path` (named in messages). A first, non-recursive pass rejects
+/// nesting deeper than `max_json_depth` and duplicate object keys, so every later recursive walk
+/// is bounded. Throws CliError (input): `FILE: line L, column C: what` (one short line).
+Json parse_json_text(const std::string& text, const std::string& path);
+
+/// Reads and parses a JSON file (`parse_json_text`). Throws CliError (input).
 Json read_json_file(const std::string& path);
+
+/// `s` cut to at most `max` characters with "..." in the middle (long JSON pointers, keys).
+std::string shorten(const std::string& s, std::size_t max);
+
+/// `s` with control characters escaped (`\n`, `\t`, `\xHH`), so that a message quoting a key or
+/// file name stays on one line.
+std::string printable(const std::string& s);
 
 /// True when `path` names a scene file (extension .json).
 bool is_scene_path(const std::string& path);
 
+/// The sign mode one mesh of a scene got, and why.
+struct MeshSignUse {
+  std::string where;  ///< JSON pointer of the mesh node
+  std::string source; ///< mesh file, or "generate: NAME"
+  SignMode requested = SignMode::automatic, used = SignMode::automatic;
+  std::string reason; ///< "requested", or what `auto` found
+};
+
 /// Facts about a compiled scene, for summaries.
 struct SceneInfo {
   std::size_t nodes = 0, primitives = 0, meshes = 0;
+  std::vector<MeshSignUse> mesh_signs; ///< one per mesh node, in file order
 };
+
+/// `--json`'s "meshes": [{"node", "source", "sign", "sign_used", "reason"}] of a scene.
+inline Json mesh_signs_json(const SceneInfo& info) {
+  Json a = Json::array();
+  for (const MeshSignUse& m : info.mesh_signs)
+    a.push_back({{"node", m.where.empty() ? "/" : m.where},
+                 {"source", m.source},
+                 {"sign", to_string(m.requested)},
+                 {"sign_used", to_string(m.used)},
+                 {"reason", m.reason}});
+  return a;
+}
+
+/// The summary's lines, one per mesh: `  sign      NODE (SOURCE): MODE (REASON)`.
+inline void print_mesh_signs(const SceneInfo& info) {
+  for (const MeshSignUse& m : info.mesh_signs)
+    std::printf("  sign      %s (%s): %s (%s)\n", m.where.empty() ? "/" : m.where.c_str(),
+                m.source.c_str(), to_string(m.used), m.reason.c_str());
+}
 
 namespace detail {
 
+/// Appends the JSON text of `j` to `out` until `out` holds more than `budget` characters: O(budget)
+/// work whatever the size of `j` (no full dump of a large or deep value).
+inline void describe_into(const Json& j, std::string& out, std::size_t budget) {
+  if (out.size() > budget) return;
+  if (j.is_array() || j.is_object()) {
+    out += j.is_array() ? '[' : '{';
+    bool first = true;
+    for (auto it = j.begin(); it != j.end() && out.size() <= budget; ++it) {
+      if (!first) out += ',';
+      first = false;
+      if (j.is_object()) out += Json(it.key()).dump() + ':';
+      describe_into(*it, out, budget);
+    }
+    out += j.is_array() ? ']' : '}';
+  } else {
+    out += j.dump();
+  }
+}
+
+/// A short text of `j` for messages (at most 40 characters).
 inline std::string describe(const Json& j) {
-  std::string s = j.dump();
+  std::string s;
+  describe_into(j, s, 40);
   if (s.size() > 40) s = s.substr(0, 37) + "...";
   return s;
 }
@@ -56,7 +122,7 @@ template <class T> class SceneCompiler {
   }
 
   [[noreturn]] void bad(const std::string& ptr, const std::string& msg) const {
-    fail(exit_input, file_ + ": " + (ptr.empty() ? "/" : ptr) + ": " + msg);
+    fail(exit_input, printable(file_ + ": " + (ptr.empty() ? "/" : shorten(ptr, 80)) + ": " + msg));
   }
 
   /// Compiles a node; returns its bounds. Tracks stack depths.
@@ -82,6 +148,7 @@ template <class T> class SceneCompiler {
       prog_.max_points = std::max(prog_.max_points, points_);
     }
     Aabb<T> b = body(type, j, ptr, kind);
+    const bool bounded = !b.is_empty() && finite_box(b);
     if (has_xform) {
       prog_.code.push_back({Op::pop_xform, xi, 0});
       --points_;
@@ -99,6 +166,17 @@ template <class T> class SceneCompiler {
       // |S| - t is exact for an exact S; for a bound it may overestimate inside the shell.
       if (kind != SdfKind::exact) kind = SdfKind::implicit;
       b = b.grown(s);
+    }
+    // A transform or growth cannot make a bounded shape unbounded: only overflow can.
+    if (bounded && (b.is_empty() || !finite_box(b))) { // NaN corners leave the box empty
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "the bounds of this node overflow %s precision (transformed or grown beyond "
+                    "%.3g)%s",
+                    precision_name<T>(), double(std::numeric_limits<T>::max()),
+                    sizeof(T) == 4 ? "; use --precision double or smaller values"
+                                   : "; use smaller values");
+      bad(ptr, buf);
     }
     --depth_;
     return b;
@@ -156,7 +234,32 @@ template <class T> class SceneCompiler {
     if (!std::isfinite(d) || (need == Need::positive && !(d > 0)) ||
         (need == Need::non_negative && !(d >= 0)))
       bad(where, std::string("expected ") + what + ", got " + describe(v));
+    check_magnitude(d, where);
     return T(d);
+  }
+  /// Refuses a value whose magnitude the working precision cannot carry through squared
+  /// distances (`max_magnitude<T>()`), or a non-zero value that rounds to zero in T.
+  void check_magnitude(double d, const std::string& where) const {
+    char buf[160];
+    if (std::abs(d) > max_magnitude<T>()) {
+      std::snprintf(buf, sizeof buf, "%.6g is too large for %s precision (at most %.3g)", d,
+                    precision_name<T>(), max_magnitude<T>());
+      bad(where,
+          std::string(buf) + (sizeof(T) == 4 ? "; use --precision double" : "; rescale the scene"));
+    }
+    if (d != 0 && T(d) == T(0)) {
+      std::snprintf(buf, sizeof buf, "%.6g is too small for %s precision (it rounds to 0)", d,
+                    precision_name<T>());
+      bad(where, std::string(buf) + (sizeof(T) == 4 ? "; use --precision double" : ""));
+    }
+  }
+  /// A finite number in double precision (angles, reduced before use).
+  double finite_double(const Json& j, const std::string& ptr, const char* key) const {
+    const auto it = j.find(key);
+    if (it == j.end()) bad(ptr, std::string("missing \"") + key + "\"");
+    if (!it->is_number() || !std::isfinite(it->template get<double>()))
+      bad(ptr + "/" + key, "expected a finite number, got " + describe(*it));
+    return it->template get<double>();
   }
   Vec3<T> vec3(const Json& j, const std::string& ptr, const char* key, Need need) const {
     const auto it = j.find(key);
@@ -176,7 +279,16 @@ template <class T> class SceneCompiler {
 
   Xform<T> parse_xform(const Json& j, const std::string& ptr) const {
     Xform<T> x;
-    if (j.contains("scale")) x.s = number(j, ptr, "scale", Need::positive);
+    if (j.contains("scale")) {
+      x.s = number(j, ptr, "scale", Need::positive);
+      // Points are divided by the scale: below 1 / max_magnitude they would overflow.
+      if (double(x.s) < 1 / max_magnitude<T>()) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%.6g is too small for %s precision (at least %.3g)",
+                      double(x.s), precision_name<T>(), 1 / max_magnitude<T>());
+        bad(ptr + "/scale", buf);
+      }
+    }
     if (j.contains("rotate")) {
       const Json& r = j["rotate"];
       const std::string rp = ptr + "/rotate";
@@ -188,7 +300,8 @@ template <class T> class SceneCompiler {
       Vec3<T> axis = vec3(r, rp, "axis", Need::finite);
       if (!(norm(axis) > T(0))) bad(rp + "/axis", "the rotation axis must not be zero");
       axis = normalized(axis);
-      const double ang = double(number(r, rp, "degrees", Need::finite)) * M_PI / 180.0;
+      // Reduced to (-360, 360) in double first: a huge angle in float would be inf.
+      const double ang = std::fmod(finite_double(r, rp, "degrees"), 360.0) * M_PI / 180.0;
       const T c = T(std::cos(ang)), s = T(std::sin(ang)), C = T(1) - c;
       const T x_ = axis.x, y = axis.y, z = axis.z;
       x.r = {{c + x_ * x_ * C, x_ * y * C - z * s, x_ * z * C + y * s, //
@@ -197,6 +310,18 @@ template <class T> class SceneCompiler {
     }
     if (j.contains("translate")) x.t = vec3(j, ptr, "translate", Need::finite);
     return x;
+  }
+
+  /// Finite bounds, or the canonical empty box; false for infinite or NaN coordinates (a NaN
+  /// corner, from 0 * inf in an overflowing transform, can make a box look empty).
+  static bool finite_box(const Aabb<T>& b) {
+    const T inf = std::numeric_limits<T>::infinity();
+    bool empty = true, finite = true;
+    for (int a = 0; a < 3; ++a) {
+      empty = empty && b.lo[a] == inf && b.hi[a] == -inf;
+      finite = finite && std::isfinite(b.lo[a]) && std::isfinite(b.hi[a]);
+    }
+    return empty || finite;
   }
 
   static Aabb<T> transform_box(const Xform<T>& x, const Aabb<T>& b) {
@@ -308,7 +433,7 @@ template <class T> class SceneCompiler {
       if (c == j.end()) bad(ptr, "missing \"child\" (the node to transform)");
       return node(*c, ptr + "/child", kind);
     }
-    bad(ptr + "/type", "unknown node type \"" + type +
+    bad(ptr + "/type", "unknown node type \"" + shorten(type, 40) +
                            "\" (expected sphere, box, capsule, cylinder, cone, torus, plane, mesh, "
                            "union, intersection, difference or transform)");
   }
@@ -386,8 +511,9 @@ template <class T> class SceneCompiler {
     SignMode sign = SignMode::automatic;
     if (j.contains("sign")) {
       if (!j["sign"].is_string()) bad(ptr + "/sign", "expected a string");
-      sign =
-          parse_sign_mode(j["sign"].get<std::string>(), exit_input, file_ + ": " + ptr + "/sign");
+      const Result<SignMode> m = ebgeom::parse_sign_mode(j["sign"].get<std::string>());
+      if (!m) bad(ptr + "/sign", m.error().what());
+      sign = *m;
     }
     PolygonSoup<T> soup;
     std::string label;
@@ -423,7 +549,7 @@ template <class T> class SceneCompiler {
       } else if (g == "icosahedron") {
         r = make_icosahedron<T>(number_or(j, ptr, "radius", Need::positive, T(1)));
       } else {
-        bad(ptr + "/generate", "unknown generator \"" + g +
+        bad(ptr + "/generate", "unknown generator \"" + shorten(g, 40) +
                                    "\" (expected icosphere, torus, box, tetrahedron, "
                                    "octahedron or icosahedron)");
       }
@@ -431,6 +557,9 @@ template <class T> class SceneCompiler {
       soup = std::move(*r);
     }
     auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, label, sign));
+    info_.mesh_signs.push_back(
+        {ptr, j.contains("path") ? label : "generate: " + j["generate"].template get<std::string>(),
+         sign, sdf->sign(), sdf->sign_reason()});
     const Aabb<T> b = sdf->bounds();
     prog_.code.push_back({Op::mesh, std::uint32_t(prog_.meshes.size()),
                           sign == SignMode::unsigned_distance ? 1u : 0u});
@@ -466,7 +595,8 @@ Program<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* in
           it.key() != "comment")
         c.bad("/" + it.key(), "unknown top-level key (expected root, version, description)");
     if (doc.contains("version") && doc["version"] != 1)
-      c.bad("/version", "unsupported scene version " + doc["version"].dump() + " (expected 1)");
+      c.bad("/version",
+            "unsupported scene version " + detail::describe(doc["version"]) + " (expected 1)");
     root = &doc["root"];
     ptr = "/root";
   }

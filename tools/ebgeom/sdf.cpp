@@ -104,6 +104,8 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     grid.dense = sample_with_progress(prog, spec, gopt, progress);
   }
   const double t3 = now_s();
+  const GridStats st = sparse ? grid_stats(grid.sparse) : grid_stats(Span<const T>(grid.dense));
+  require_finite_grid(st.non_finite, spec.size(), o.input);
   PngInfo img;
   OutputGroup outputs; // every output appears only once all are written
   if (sparse) {
@@ -130,7 +132,6 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   }
   if (auto ok = outputs.commit(); !ok) fail(exit_output, ok.error().what());
   const double t4 = now_s();
-  const GridStats st = sparse ? grid_stats(grid.sparse) : grid_stats(Span<const T>(grid.dense));
   const int threads = resolve_threads(gopt.exec);
   const std::size_t tile_count = grid.sparse.tile_code.size();
   const std::size_t kept = grid.sparse.block_count();
@@ -159,6 +160,8 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     if (!scene)
       j["sign_used"] = {{"mode", sign_name(prog.meshes[0]->sign())},
                         {"reason", prog.meshes[0]->sign_reason()}};
+    else
+      j["meshes"] = mesh_signs_json(in.info);
     j["threads"] = threads;
     if (!o.png.empty())
       j["png"] = {{"path", o.png},
@@ -203,6 +206,8 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     if (!scene)
       std::printf("  sign      %s (%s)\n", sign_name(prog.meshes[0]->sign()),
                   prog.meshes[0]->sign_reason().c_str());
+    else
+      print_mesh_signs(in.info);
     std::printf("  time      parse %.3f s  build %.3f s  eval %.3f s  write %.3f s  (%d threads)\n",
                 t1 - t0, t2 - t1, t3 - t2, t4 - t3, threads);
   }

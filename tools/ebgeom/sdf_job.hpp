@@ -17,6 +17,7 @@
 #include "common.hpp"
 #include "ebgeom/eval/grid_spec.hpp"
 #include "mesh_input.hpp"
+#include "number_options.hpp"
 #include "program.hpp"
 #include "scene.hpp"
 
@@ -51,7 +52,7 @@ inline void add_sdf_options(CLI::App* sub, const std::shared_ptr<SdfOptions>& o)
                               "N cells on every axis, or NX NY NZ (default 64; cell-centred)")
                   ->expected(1, 3);
   auto* dx = sub->add_option("--dx", o->dx, "cubic cells of size H (the box grows to fit)")
-                 ->check(CLI::PositiveNumber);
+                 ->check(number_rule(NumberRule::positive));
   res->excludes(dx);
   sub->add_flag("--cubic", o->cubic,
                 "cubic cells: --res N (or 64) cells on the longest axis, the other axes get as "
@@ -60,11 +61,11 @@ inline void add_sdf_options(CLI::App* sub, const std::shared_ptr<SdfOptions>& o)
   sub->add_option("--box", o->box, "X0 Y0 Z0 X1 Y1 Z1 (default: bounding box + --pad)")
       ->expected(6);
   sub->add_option("--pad", o->pad, "padding per side, as a fraction of the extent")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(number_rule(NumberRule::percent_range))
       ->capture_default_str();
   sub->add_option("--band", o->band,
                   "narrow band of W times the largest cell spacing: exact inside, ±band outside")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_rule(NumberRule::non_negative));
   sub->add_option("--sign", o->sign,
                   "sign mode for meshes: pseudonormal, winding, fast-winding, unsigned or auto "
                   "(pseudonormal on closed manifold oriented meshes, fast-winding otherwise)")
@@ -73,7 +74,7 @@ inline void add_sdf_options(CLI::App* sub, const std::shared_ptr<SdfOptions>& o)
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_rule(NumberRule::non_negative, /*integer=*/true));
   auto* png = sub->add_option("--png", o->png, "also write a PNG slice of the grid");
   sub->add_option("--slice", o->slice, "slice of the PNG: x, y or z, optionally =FRACTION")
       ->needs(png)
@@ -98,6 +99,11 @@ template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bou
   GridSpec<T> spec;
   spec.centering = o.nodes ? Centering::node : Centering::cell;
   if (!o.box.empty()) {
+    for (double v : o.box)
+      if (!std::isfinite(v) || std::abs(v) > max_magnitude<T>())
+        fail(exit_usage, "--box: every value must be a finite number of magnitude at most " +
+                             std::to_string(max_magnitude<T>()) + " in " + precision_name<T>() +
+                             " precision");
     spec.box =
         Aabb<T>({T(o.box[0]), T(o.box[1]), T(o.box[2])}, {T(o.box[3]), T(o.box[4]), T(o.box[5])});
     for (int a = 0; a < 3; ++a)
@@ -144,6 +150,17 @@ template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bou
   }
   if (auto ok = spec.validate(); !ok) fail(exit_usage, ok.error().what());
   return spec;
+}
+
+/// Refuses to write a grid with NaN or infinite samples (counted by `grid_stats`): they come from
+/// values the working precision cannot carry (e.g. nested scales), never from a valid SDF.
+/// `non_finite` is `GridStats::non_finite`. Throws CliError (input) naming the count.
+inline void require_finite_grid(std::uint64_t non_finite, std::uint64_t samples,
+                                const std::string& input) {
+  if (non_finite == 0) return;
+  fail(exit_input, input + ": " + std::to_string(non_finite) + " of " + std::to_string(samples) +
+                       " samples are NaN or infinite (values too extreme for the working "
+                       "precision); nothing written. Try --precision double or rescale the input");
 }
 
 /// An input loaded for sampling, with the times its phases took.

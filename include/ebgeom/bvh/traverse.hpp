@@ -181,10 +181,12 @@ inline int order_children(const T (&d2)[K], T lim, std::uint64_t (&key)[K]) noex
 
 /// Nearest-first branch and bound (see the file comment). `best2` is in/out: the initial bound and
 /// the final best squared distance the leaf callback reported.
+/// A point with a NaN or infinite coordinate visits nothing (`best2` is left as it was): its box
+/// distances are NaN or inf - inf, which would otherwise select empty children.
 template <bool Shrink = false, class T, int K, class BV, class LeafFn>
 void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf,
              T abs_slack = T(0)) noexcept {
-  if (bvh.root.is_empty()) return;
+  if (bvh.root.is_empty() || !all_finite(p)) return;
   if (bvh.root.is_leaf()) {
     if (bvh.box.distance2(p) < prune_limit(best2, abs_slack))
       leaf(bvh.root.index, bvh.root.count, best2);

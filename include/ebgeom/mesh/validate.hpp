@@ -66,6 +66,10 @@ template <class T> struct ValidationReport {
   IssueList<Index> degenerate_faces;      ///< zero-area faces or faces repeating a vertex
   IssueList<Index> duplicate_faces;       ///< faces with the same vertex set as an earlier face
   IssueList<Index> isolated_vertices;     ///< vertices no usable face references
+  std::size_t shells = 0; ///< connected components of the usable faces (sharing vertices)
+  /// Two shells' bounding boxes overlap: they may be nested or intersect, where the nearest
+  /// surface's pseudonormal and the winding number disagree (e.g. a ball inside a ball).
+  bool shells_overlap = false;
   // Geometry (in double, over the usable faces with finite vertices).
   Aabb<T> bounds; ///< of the finite vertices
   double area = 0;
@@ -181,6 +185,38 @@ ValidationReport<T> validate(const PolygonSoup<T>& soup, const ValidateOptions& 
   }
   for (std::size_t v = 0; v < nv; ++v)
     if (!referenced[v]) r.isolated_vertices.add(Index(v), ml);
+
+  // Shells: components of the usable faces joined at shared vertices; then whether any two of
+  // their boxes (finite vertices) overlap, by a sweep over the boxes sorted by lower x.
+  {
+    detail::DisjointSets comp(nv);
+    for (std::size_t f = 0; f < nf; ++f) {
+      if (!usable[f]) continue;
+      const Index* c = soup.indices.data() + soup.offsets[f];
+      for (std::size_t i = 1; i < soup.face_size(f); ++i) comp.unite(c[0], c[i]);
+    }
+    const Index none = ~Index(0);
+    std::vector<Index> shell_of(nv, none);
+    std::vector<Aabb<T>> boxes;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (!referenced[v]) continue;
+      const Index root = comp.find(Index(v));
+      if (shell_of[root] == none) {
+        shell_of[root] = Index(boxes.size());
+        boxes.emplace_back();
+      }
+      if (finite[v]) boxes[shell_of[root]].extend(soup.vertices[v]);
+    }
+    r.shells = boxes.size();
+    std::sort(boxes.begin(), boxes.end(),
+              [](const Aabb<T>& a, const Aabb<T>& b) { return a.lo.x < b.lo.x; });
+    for (std::size_t i = 0; i < boxes.size() && !r.shells_overlap; ++i)
+      for (std::size_t j = i + 1; j < boxes.size() && boxes[j].lo.x <= boxes[i].hi.x; ++j)
+        if (!boxes[i].is_empty() && !boxes[j].is_empty() && boxes[i].overlaps(boxes[j])) {
+          r.shells_overlap = true;
+          break;
+        }
+  }
 
   // Edges: sort the face sides by undirected key.
   struct Side {

@@ -95,8 +95,10 @@ template <class S, int K = 4> class BvhUnion {
     return o;
   }
 
-  /// min_i S_i(p); +inf for an empty union. Thread-safe.
+  /// min_i S_i(p); +inf for an empty union; NaN when `p` has a NaN or infinite coordinate.
+  /// Thread-safe.
   T operator()(const Vec3<T>& p) const noexcept {
+    if (!all_finite(p)) return std::numeric_limits<T>::quiet_NaN();
     T best = std::numeric_limits<T>::infinity();
     for (const S& s : unbounded_) best = std::min(best, s(p));
     if constexpr (prunes) {

@@ -414,7 +414,8 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     return make(std::move(*m), options);
   }
 
-  /// Signed distance at `p` (< 0 inside).
+  /// Signed distance at `p` (< 0 inside). NaN when `p` has a NaN or infinite coordinate (as every
+  /// query of this class: no sign is defined there).
   T operator()(const Vec3<T>& p) const noexcept { return closest(p).distance; }
 
   /// Closest point, triangle, feature and signed distance. Equal to
@@ -444,6 +445,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
 
   /// Unsigned distance (no sign decision).
   T unsigned_distance(const Vec3<T>& p) const noexcept {
+    if (!all_finite(p)) return std::numeric_limits<T>::quiet_NaN();
     T best2 = std::numeric_limits<T>::infinity();
     std::uint32_t best = bvh::ChildRef::none;
     nearest_slot(p, best2, best);
@@ -473,6 +475,11 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     const std::size_t n = dims[0] * dims[1] * dims[2];
     EBGEOM_ASSERT(pts.size() == n && out.size() == n);
     if (n == 0) return;
+    for (std::size_t l = 0; l < n; ++l)
+      if (!all_finite(pts[l])) { // the lattice bounds below assume finite samples
+        for (std::size_t i = 0; i < n; ++i) out[i] = (*this)(pts[i]);
+        return;
+      }
     LatticeJob job{pts.data(), dims, std::vector<std::uint32_t>(n, bvh::ChildRef::none),
                    {},         {},   bvh::ChildRef::none};
     job.d2.resize(64);
@@ -584,6 +591,11 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
   }
 
   MeshClosestPoint<T> search(const Vec3<T>& p, T bound2) const noexcept {
+    if (!all_finite(p)) {
+      MeshClosestPoint<T> r;
+      r.distance = std::numeric_limits<T>::quiet_NaN();
+      return r;
+    }
     T best2 = bound2;
     std::uint32_t best = bvh::ChildRef::none;
     nearest_slot(p, best2, best);

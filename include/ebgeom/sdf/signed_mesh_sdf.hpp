@@ -20,6 +20,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "ebgeom/core/result.hpp"
@@ -43,22 +44,31 @@ enum class SignMode : std::uint8_t {
   automatic,         ///< `pseudonormal` on valid closed meshes, `fast_winding` otherwise
 };
 
-/// Lower-case name of a mode ("pseudonormal", "winding", "fast_winding", "unsigned_distance",
-/// "automatic").
+/// The one name table of the sign modes, used by the library, the command-line tools (`--sign`)
+/// and scene files (`"sign"`): "pseudonormal", "winding", "fast-winding", "unsigned", "auto".
+inline constexpr std::pair<SignMode, const char*> sign_mode_names[] = {
+    {SignMode::pseudonormal, "pseudonormal"},
+    {SignMode::winding, "winding"},
+    {SignMode::fast_winding, "fast-winding"},
+    {SignMode::unsigned_distance, "unsigned"},
+    {SignMode::automatic, "auto"}};
+
+/// The name of a mode in `sign_mode_names` ("fast-winding" for `SignMode::fast_winding`).
 inline const char* to_string(SignMode m) noexcept {
-  switch (m) {
-  case SignMode::pseudonormal:
-    return "pseudonormal";
-  case SignMode::winding:
-    return "winding";
-  case SignMode::fast_winding:
-    return "fast_winding";
-  case SignMode::unsigned_distance:
-    return "unsigned_distance";
-  case SignMode::automatic:
-    return "automatic";
-  }
+  for (const auto& n : sign_mode_names)
+    if (n.first == m) return n.second;
   return "?";
+}
+
+/// The mode named `name` (`sign_mode_names`; exact, case-sensitive). Error `invalid_argument`
+/// listing the names otherwise.
+inline Result<SignMode> parse_sign_mode(std::string_view name) {
+  for (const auto& n : sign_mode_names)
+    if (name == n.second) return n.first;
+  return Error{ErrorCode::invalid_argument,
+               "unknown sign mode '" + std::string(name.substr(0, 40)) +
+                   (name.size() > 40 ? "..." : "") +
+                   "' (expected pseudonormal, winding, fast-winding, unsigned or auto)"};
 }
 
 /// The mode `automatic` resolves to, and why (one line).
@@ -68,10 +78,11 @@ struct SignChoice {
 };
 
 /// What `automatic` picks for a mesh with validation report `r`: `pseudonormal` when the mesh is
-/// closed (no boundary edge), manifold (edges and vertices) and consistently oriented, otherwise
-/// `fast_winding`. The reason names the first failed condition with its count. An inward but
-/// otherwise valid mesh keeps `pseudonormal` (every mode then reports the inside as outside; fix
-/// the orientation with `orient_outward`), and the reason says so.
+/// closed (no boundary edge), manifold (edges and vertices), consistently oriented and has no two
+/// shells whose boxes overlap (nested or intersecting shells), otherwise `fast_winding`. The reason
+/// names the first failed condition with its count. An inward but otherwise valid mesh keeps
+/// `pseudonormal` (every mode then reports the inside as outside; fix the orientation with
+/// `orient_outward`), and the reason says so.
 template <class T> SignChoice choose_sign_mode(const ValidationReport<T>& r) {
   SignChoice c;
   c.mode = SignMode::fast_winding;
@@ -98,6 +109,12 @@ template <class T> SignChoice choose_sign_mode(const ValidationReport<T>& r) {
   if (!r.consistently_oriented()) {
     c.reason = "inconsistently oriented: " + std::to_string(r.inconsistent_edges.count) +
                " edges whose two faces traverse them the same way";
+    return c;
+  }
+  if (r.shells > 1 && r.shells_overlap) {
+    c.reason = std::to_string(r.shells) +
+               " closed shells with overlapping bounding boxes (nested or intersecting): the "
+               "winding number decides, the nearest shell's pseudonormal may not";
     return c;
   }
   c.mode = SignMode::pseudonormal;

@@ -210,8 +210,12 @@ TEST(DirtyMesh, OverlappingSelfIntersectingComponents) {
   const Truth uni = [](const V& p) {
     return std::min(norm(p - V{-0.5, 0, 0}), norm(p - V{0.5, 0, 0})) - 1;
   };
-  // validate() cannot see intersections: automatic keeps pseudonormal.
-  EXPECT_EQ(Sdf::build(s).value().resolved_mode(), SignMode::pseudonormal);
+  // Two closed shells whose boxes overlap: automatic takes the winding sign, right everywhere.
+  const ValidationReport<double> r = validate(s);
+  EXPECT_EQ(r.shells, 2u);
+  EXPECT_TRUE(r.shells_overlap);
+  EXPECT_EQ(Sdf::build(s).value().resolved_mode(), SignMode::fast_winding);
+  EXPECT_EQ(wrong_signs(with_mode(s, SignMode::automatic), uni, [](const V&) { return true; }), 0);
   for (SignMode m : winding_modes)
     EXPECT_EQ(wrong_signs(with_mode(s, m), uni, [](const V&) { return true; }), 0) << to_string(m);
   // Inside one sphere next to the other's buried surface, pseudonormal says outside.
@@ -224,10 +228,12 @@ TEST(DirtyMesh, OverlappingSelfIntersectingComponents) {
 TEST(DirtyMesh, NestedShells) {
   const Soup inner = test::scaled(sphere(), 0.5);
   const Truth hollow = [](const V& p) { return std::max(norm(p) - 1, 0.5 - norm(p)); };
-  // Hollow ball (inner shell reversed): every mode, and automatic picks pseudonormal.
+  // Hollow ball (inner shell reversed): every mode is right; automatic sees nested shells and
+  // takes the winding sign (w = 0 in the cavity).
   const Soup h = test::combine(sphere(), inner, V{0, 0, 0}, /*reversed=*/true);
-  EXPECT_EQ(Sdf::build(h).value().resolved_mode(), SignMode::pseudonormal);
-  for (SignMode m : signed_modes)
+  EXPECT_EQ(Sdf::build(h).value().resolved_mode(), SignMode::fast_winding);
+  for (SignMode m :
+       {SignMode::pseudonormal, SignMode::winding, SignMode::fast_winding, SignMode::automatic})
     EXPECT_EQ(wrong_signs(with_mode(h, m), hollow, [](const V&) { return true; }), 0)
         << to_string(m);
   // Both shells outward: the winding number is 2 in the cavity, so the winding modes give the
@@ -240,6 +246,48 @@ TEST(DirtyMesh, NestedShells) {
   }
   EXPECT_FALSE(inside(with_mode(both, SignMode::pseudonormal), {0, 0, 0.6}));
   EXPECT_TRUE(inside(with_mode(both, SignMode::pseudonormal), {0, 0, 0.1}));
+  // A ball inside a ball, both outward, is topologically clean; automatic must still see the
+  // nested shells and take the winding sign (pseudonormal is wrong around the inner shell).
+  const ValidationReport<double> r = validate(both);
+  EXPECT_TRUE(r.closed() && r.manifold() && r.consistently_oriented());
+  EXPECT_EQ(r.shells, 2u);
+  EXPECT_EQ(Sdf::build(both).value().resolved_mode(), SignMode::fast_winding);
+  EXPECT_EQ(wrong_signs(with_mode(both, SignMode::automatic), ball, [](const V&) { return true; }),
+            0);
+  EXPECT_GT(
+      wrong_signs(with_mode(both, SignMode::pseudonormal), ball, [](const V&) { return true; }), 0);
+}
+
+TEST(DirtyMesh, OverlappingClosedBoxes) {
+  // Two closed, outward boxes overlapping in [0, 0.5] x [-0.5, 0.5]^2; the intended solid is their
+  // union. Each is clean on its own, so only the shell test can steer automatic.
+  const Soup a = make_box<double>({-1, -0.5, -0.5}, {0.5, 0.5, 0.5}).value();
+  const Soup b = make_box<double>({0, -0.5, -0.5}, {1.4, 0.5, 0.5}).value();
+  const Soup s = test::combine(a, b, V{0, 0, 0});
+  auto box = [](const V& q, const V& lo, const V& hi) { // exact box SDF
+    const V c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
+    const V d{std::abs(q.x - c.x) - h.x, std::abs(q.y - c.y) - h.y, std::abs(q.z - c.z) - h.z};
+    const V o{std::max(d.x, 0.0), std::max(d.y, 0.0), std::max(d.z, 0.0)};
+    return norm(o) + std::min(std::max(d.x, std::max(d.y, d.z)), 0.0);
+  };
+  const Truth uni = [&](const V& p) {
+    return std::min(box(p, {-1, -0.5, -0.5}, {0.5, 0.5, 0.5}),
+                    box(p, {0, -0.5, -0.5}, {1.4, 0.5, 0.5}));
+  };
+  const ValidationReport<double> r = validate(s);
+  EXPECT_TRUE(r.closed() && r.manifold() && r.consistently_oriented());
+  EXPECT_EQ(r.shells, 2u);
+  EXPECT_TRUE(r.shells_overlap);
+  const Sdf automatic = Sdf::build(s).value();
+  EXPECT_EQ(automatic.resolved_mode(), SignMode::fast_winding);
+  EXPECT_NE(automatic.reason().find("2 closed shells"), std::string::npos) << automatic.reason();
+  EXPECT_EQ(wrong_signs(automatic, uni, [](const V&) { return true; }), 0);
+  EXPECT_GT(wrong_signs(with_mode(s, SignMode::pseudonormal), uni, [](const V&) { return true; }),
+            0);
+  // Two disjoint boxes keep the exact pseudonormal sign.
+  const Soup apart = test::combine(a, b, V{0, 3, 0});
+  EXPECT_FALSE(validate(apart).shells_overlap);
+  EXPECT_EQ(Sdf::build(apart).value().resolved_mode(), SignMode::pseudonormal);
 }
 
 // ---- non-manifold edges -----------------------------------------------------------------------

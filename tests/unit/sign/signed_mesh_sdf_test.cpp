@@ -124,10 +124,25 @@ TEST(SignedMeshSdfKind, ExactOnlyWithThePseudonormalSign) {
     EXPECT_EQ(with_mode(soup, m).dynamic_kind(), SdfKind::implicit) << to_string(m);
 }
 
-TEST(SignedMeshSdfNames, ToString) {
-  EXPECT_STREQ(to_string(SignMode::fast_winding), "fast_winding");
-  EXPECT_STREQ(to_string(SignMode::unsigned_distance), "unsigned_distance");
-  EXPECT_STREQ(to_string(SignMode::automatic), "automatic");
+TEST(SignedMeshSdfNames, OneTableForTheLibraryAndTheTools) {
+  // The spellings of `ebgeom --sign` and scene files (docs/cli.md), written out independently.
+  const std::pair<SignMode, const char*> expected[] = {{SignMode::pseudonormal, "pseudonormal"},
+                                                       {SignMode::winding, "winding"},
+                                                       {SignMode::fast_winding, "fast-winding"},
+                                                       {SignMode::unsigned_distance, "unsigned"},
+                                                       {SignMode::automatic, "auto"}};
+  for (const auto& [mode, name] : expected) {
+    EXPECT_STREQ(to_string(mode), name);
+    const Result<SignMode> back = parse_sign_mode(name);
+    ASSERT_TRUE(back) << name;
+    EXPECT_EQ(*back, mode) << name;
+  }
+  for (const char* bad : {"fast_winding", "unsigned_distance", "automatic", "Auto", "", "wind"}) {
+    const Result<SignMode> r = parse_sign_mode(bad);
+    ASSERT_FALSE(r) << bad;
+    EXPECT_EQ(r.error().code, ErrorCode::invalid_argument);
+    EXPECT_NE(r.error().what().find("fast-winding, unsigned or auto"), std::string::npos);
+  }
 }
 
 } // namespace
