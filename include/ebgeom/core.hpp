@@ -5,6 +5,7 @@
 /// Module umbrella: vectors, boxes, errors, results, spans and threading.
 
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/axis.hpp"
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/core/error.hpp"
 #include "ebgeom/core/parallel.hpp"
