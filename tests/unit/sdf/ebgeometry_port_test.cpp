@@ -128,9 +128,20 @@ TEST(FromEBGeometry, ReadIntoDcelAndTheDcelSdfs) {
   ASSERT_TRUE(soup.has_value()) << soup.error().what();
   auto mesh = ebgeom::make_half_edge_mesh(*soup); // DCEL::MeshT<T>
   ASSERT_TRUE(mesh.has_value());
-  EXPECT_EQ(mesh->face_count(), 6u);                        // FaceT
-  EXPECT_EQ(mesh->vertex_count(), 8u);                      // VertexT
-  EXPECT_EQ(mesh->half_edge_count(), 24u);                  // EdgeT (half-edges)
+  EXPECT_EQ(mesh->face_count(), 6u);       // FaceT
+  EXPECT_EQ(mesh->vertex_count(), 8u);     // VertexT
+  EXPECT_EQ(mesh->half_edge_count(), 24u); // EdgeT (half-edges)
+  // FaceT: area and unit normal; EdgeT: next/pair circulation; VertexT: its position
+  for (ebgeom::Index f = 0; f < 6; ++f) {
+    const ebgeom::HalfEdgeFace<T>& face = mesh->face(f);
+    EXPECT_NEAR(face.area, 4.0, 1e-12);
+    EXPECT_NEAR(ebgeom::norm(face.normal), 1.0, 1e-12);
+    const ebgeom::HalfEdge& e = mesh->half_edge(face.edge);
+    EXPECT_EQ(e.face, f);
+    EXPECT_EQ(mesh->half_edge(e.pair).pair, face.edge); // closed mesh: every edge has a pair
+    const ebgeom::HalfEdgeVertex<T>& v = mesh->vertex(e.origin);
+    EXPECT_EQ(ebgeom::norm(v.position), std::sqrt(3.0));
+  }
   const ebgeom::BruteForceDcelSdf<T> direct(*mesh);         // chombo-discharge DcelSdf
   const auto bvh = ebgeom::DcelSdf<T>::make(*mesh).value(); // BvhSdf (AABB)
   const auto bvh_s = ebgeom::DcelSdf<T, 4, ebgeom::BoundingSphere<T>>::make(*mesh).value();
