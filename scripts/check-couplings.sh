@@ -61,10 +61,10 @@ need cmake cmake
 need make make
 need tar tar
 need "$CXX" g++
-if [ $DO_CHOMBO = 1 ]; then
+if [ $DO_CHOMBO = 1 ] && [ $QUICK = 0 ]; then # the quick mode only reads Chombo's headers
   need csh csh
   need perl perl
-  [ $QUICK = 1 ] || need "$FC" gfortran
+  need "$FC" gfortran
 fi
 
 AMREX_TGZ=$(ls "$PEERS"/amrex-*.tar.gz 2>/dev/null | head -n 1 || true)
