@@ -6,6 +6,7 @@
 /// spans and threading. Includes nothing above `core/` (the SDF contract is in `ebgeom/sdf.hpp`).
 
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/axis.hpp"
 #include "ebgeom/core/bounding_sphere.hpp"
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/core/error.hpp"

@@ -15,6 +15,7 @@
 /// `S` is any ebgeom SDF: `MeshSdf<T>`, an analytic shape, a CSG tree of them (`unite`,
 /// `subtract`, `translate`, ...), `BvhUnion<S>`, or a type-erased `AnySdf<T>`.
 
+#include <limits>
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -41,8 +42,12 @@ struct EbOptions {
   double z_slice = 0.0;
 };
 
-/// The factor that turns ebgeom's S into the EB code's value: -1 for fluid outside, +1 inside.
-constexpr int eb_sign(FluidSide fluid) noexcept { return fluid == FluidSide::outside ? -1 : 1; }
+/// The factor that turns ebgeom's S into the EB code's value: -1 for fluid outside, +1 inside,
+/// and 0 for a `FluidSide` forced out of range by a cast (the adapter then returns NaN at every
+/// point rather than silently picking a side).
+constexpr int eb_sign(FluidSide fluid) noexcept {
+  return fluid == FluidSide::outside ? -1 : (fluid == FluidSide::inside ? 1 : 0);
+}
 
 /// Wraps an SDF `S` for an embedded-boundary code: value = eb_sign(fluid) * S(x, y, z).
 ///
@@ -68,7 +73,9 @@ template <class S> class EbFunction {
   /// Shares an existing geometry, e.g. one built once and used on every AMR level, or by two
   /// adapters with different options. Precondition: `sdf` is not null.
   explicit EbFunction(std::shared_ptr<const S> sdf, const EbOptions& opt = {})
-      : sdf_(std::move(sdf)), sign_(scalar_type(eb_sign(opt.fluid))),
+      : sdf_(std::move(sdf)),
+        sign_(eb_sign(opt.fluid) != 0 ? scalar_type(eb_sign(opt.fluid))
+                                      : std::numeric_limits<scalar_type>::quiet_NaN()),
         z_slice_(scalar_type(opt.z_slice)) {
     EBGEOM_ASSERT(sdf_ != nullptr);
   }

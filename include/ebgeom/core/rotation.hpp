@@ -8,7 +8,9 @@
 /// positive angle turns x towards y about z.
 
 #include <cmath>
+#include <limits>
 
+#include "ebgeom/core/axis.hpp"
 #include "ebgeom/core/vec.hpp"
 
 namespace ebgeom {
@@ -56,22 +58,29 @@ template <class T> struct Mat3 {
   static constexpr Mat3 from_cols(const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) noexcept {
     return {{a.x, b.x, c.x, a.y, b.y, c.y, a.z, b.z, c.z}};
   }
-  /// Rotation by `radians` about `axis` (any non-zero length; a zero axis gives the identity).
-  /// Rodrigues' formula.
+  /// Rotation by `radians` about `axis` (any non-zero length). Rodrigues' formula. A zero or
+  /// non-finite axis has no direction: the result is all NaN (never a silent identity).
   static Mat3 axis_angle(const Vec3<T>& axis, T radians) noexcept {
     return axis_cos_sin(axis, std::cos(radians), std::sin(radians));
   }
-  /// Rotation by `degrees` about `axis` (exact at multiples of 90 degrees).
+  /// Rotation by `degrees` about `axis` (exact at multiples of 90 degrees). A zero or non-finite
+  /// axis gives all NaN.
   static Mat3 axis_degrees(const Vec3<T>& axis, T degrees) noexcept {
     T c, s;
     detail::cos_sin_degrees(degrees, c, s);
     return axis_cos_sin(axis, c, s);
   }
-  /// Rotation by `degrees` about coordinate axis `axis` (0 = x, 1 = y, 2 = z), as EBGeometry's
-  /// `rotate(angle, axis)`. An axis outside 0..2 gives the identity.
-  static Mat3 coordinate_axis(int axis, T degrees) noexcept {
-    if (axis < 0 || axis > 2) return {};
-    return axis_degrees(Vec3<T>::unit(axis), degrees);
+  /// Rotation by `degrees` about coordinate axis `axis` (EBGeometry's `rotate(angle, axis)` with
+  /// the arguments in ebgeom's order: `coordinate_axis(Axis::z, 90)`). An `Axis` forced out of
+  /// range by a cast gives all NaN.
+  static Mat3 coordinate_axis(Axis axis, T degrees) noexcept {
+    if (!is_valid(axis)) return nan();
+    return axis_degrees(Vec3<T>::unit(index(axis)), degrees);
+  }
+  /// All nine entries NaN: the result of a rotation without a valid axis.
+  static constexpr Mat3 nan() noexcept {
+    constexpr T n = std::numeric_limits<T>::quiet_NaN();
+    return {{n, n, n, n, n, n, n, n, n}};
   }
 
   constexpr Mat3 transposed() const noexcept {
@@ -100,7 +109,7 @@ template <class T> struct Mat3 {
  private:
   static Mat3 axis_cos_sin(const Vec3<T>& axis, T c, T s) noexcept {
     const Vec3<T> u = normalized(axis);
-    if (u == Vec3<T>::zero()) return {};
+    if (u == Vec3<T>::zero() || !std::isfinite(u.x + u.y + u.z)) return nan();
     const T t = T(1) - c;
     return {{c + u.x * u.x * t, u.x * u.y * t - u.z * s, u.x * u.z * t + u.y * s,
              u.y * u.x * t + u.z * s, c + u.y * u.y * t, u.y * u.z * t - u.x * s,
@@ -116,7 +125,7 @@ template <class T> struct Quaternion {
   T w = 1, x = 0, y = 0, z = 0;
 
   static constexpr Quaternion identity() noexcept { return {}; }
-  /// Rotation by `radians` about `axis` (a zero axis gives the identity).
+  /// Rotation by `radians` about `axis` (a zero or non-finite axis gives all NaN).
   static Quaternion axis_angle(const Vec3<T>& axis, T radians) noexcept {
     return axis_cos_sin_half(axis, std::cos(radians / T(2)), std::sin(radians / T(2)));
   }
@@ -126,19 +135,26 @@ template <class T> struct Quaternion {
     detail::cos_sin_degrees(degrees / T(2), c, s);
     return axis_cos_sin_half(axis, c, s);
   }
-  /// Rotation by `degrees` about coordinate axis 0, 1 or 2 (others give the identity).
-  static Quaternion coordinate_axis(int axis, T degrees) noexcept {
-    if (axis < 0 || axis > 2) return {};
-    return axis_degrees(Vec3<T>::unit(axis), degrees);
+  /// Rotation by `degrees` about coordinate axis `axis` (an `Axis` forced out of range by a cast
+  /// gives all NaN).
+  static Quaternion coordinate_axis(Axis axis, T degrees) noexcept {
+    if (!is_valid(axis)) return nan();
+    return axis_degrees(Vec3<T>::unit(index(axis)), degrees);
+  }
+  /// All four components NaN: the result of a rotation without a valid axis.
+  static constexpr Quaternion nan() noexcept {
+    constexpr T n = std::numeric_limits<T>::quiet_NaN();
+    return {n, n, n, n};
   }
 
   constexpr Vec3<T> vec() const noexcept { return {x, y, z}; }
   constexpr Quaternion conjugate() const noexcept { return {w, -x, -y, -z}; }
   constexpr T norm2() const noexcept { return w * w + x * x + y * y + z * z; }
-  /// Unit quaternion along this one; zero gives the identity.
+  /// Unit quaternion along this one; zero (or non-finite) gives all NaN, never a silent
+  /// identity.
   Quaternion normalized() const noexcept {
     const T n = std::sqrt(norm2());
-    if (!(n > T(0))) return {};
+    if (!(n > T(0)) || !std::isfinite(n)) return nan();
     return {w / n, x / n, y / n, z / n};
   }
   /// Hamilton product: `(a * b).rotate(v) == a.rotate(b.rotate(v))` (b first, then a).
@@ -166,7 +182,7 @@ template <class T> struct Quaternion {
  private:
   static Quaternion axis_cos_sin_half(const Vec3<T>& axis, T c, T s) noexcept {
     const Vec3<T> u = ebgeom::normalized(axis);
-    if (u == Vec3<T>::zero()) return {};
+    if (u == Vec3<T>::zero() || !std::isfinite(u.x + u.y + u.z)) return nan();
     return {c, u.x * s, u.y * s, u.z * s};
   }
 };

@@ -21,9 +21,13 @@ namespace ebgeom {
 
 /// A type-erased SDF with scalar type `T`. Copies share the wrapped shape (immutable), so copies
 /// are cheap and concurrent calls are thread-safe. Its static `kind` is `implicit` (nothing is
-/// known at compile time); `dynamic_kind()` reports the wrapped shape's kind, which batch
-/// evaluators use (see eval/evaluate.hpp `kind_of`). Construction allocates once (may throw
-/// std::bad_alloc); evaluation never allocates or throws.
+/// known at compile time); the object carries what the wrapped shape knows: `dynamic_kind()`
+/// (its kind, or its own `dynamic_kind()` for run-time composed shapes), `bounds()`, and
+/// `dynamic_prunable()` (`is_prunable` of the wrapped shape). Batch evaluators use the kind (see
+/// eval/evaluate.hpp `kind_of`), and `BvhUnion<AnySdf<T>>` puts every prunable object in its
+/// tree, so a union of mixed shapes (spheres, boxes, meshes, CSG trees) is a nearest search, not
+/// a linear scan; the other objects are evaluated at every query. Construction allocates once (may
+/// throw std::bad_alloc); evaluation never allocates or throws.
 template <class T> class AnySdf {
  public:
   using scalar_type = T;
@@ -45,8 +49,10 @@ template <class T> class AnySdf {
   /// One point (one virtual call; prefer `eval` for many points).
   T operator()(const Vec3<T>& p) const noexcept { return impl_->value(p); }
   Aabb<T> bounds() const noexcept { return impl_->bounds(); }
-  /// The wrapped shape's kind.
+  /// The wrapped shape's kind (its `dynamic_kind()` when it has one, else its static `kind`).
   SdfKind dynamic_kind() const noexcept { return impl_->kind(); }
+  /// Whether a union may prune the wrapped shape by its bounds (`is_prunable` of it).
+  bool dynamic_prunable() const noexcept { return impl_->prunable(); }
 
  private:
   struct Interface {
@@ -55,6 +61,7 @@ template <class T> class AnySdf {
     virtual T value(const Vec3<T>&) const noexcept = 0;
     virtual Aabb<T> bounds() const noexcept = 0;
     virtual SdfKind kind() const noexcept = 0;
+    virtual bool prunable() const noexcept = 0;
   };
   template <class S> struct Model final : Interface {
     explicit Model(S s) : shape(std::move(s)) {}
@@ -65,7 +72,13 @@ template <class T> class AnySdf {
     }
     T value(const Vec3<T>& p) const noexcept override { return shape(p); }
     Aabb<T> bounds() const noexcept override { return shape.bounds(); }
-    SdfKind kind() const noexcept override { return S::kind; }
+    SdfKind kind() const noexcept override {
+      if constexpr (detail::has_dynamic_kind_member<S>::value)
+        return shape.dynamic_kind();
+      else
+        return S::kind;
+    }
+    bool prunable() const noexcept override { return is_prunable(shape); }
     S shape;
   };
   std::shared_ptr<const Interface> impl_; // never null

@@ -8,9 +8,12 @@
 ///
 /// Pruning is valid when every object satisfies S(p) >= dist(p, S.bounds()) outside its box: true
 /// for exact SDFs whose box contains the zero level set and the inside. `prunable_in_union<S>`
-/// says so (true when `S::kind == SdfKind::exact`; specialise it for other types that qualify).
-/// Other objects are evaluated linearly, so the result is always right. Objects with unbounded
-/// boxes (half-spaces) are kept outside the tree and always evaluated.
+/// says so (true when `S::kind == SdfKind::exact`; specialise it for other types that qualify;
+/// sdf/concepts.hpp). Types composed at run time (`AnySdf<T>`, `SignedMeshSdf`) say it object by
+/// object (`is_prunable`: an `AnySdf` wrapping a sphere, a box or a mesh SDF is prunable, one
+/// wrapping a smooth union is not), so a union of mixed types is a nearest search too. Objects
+/// that are not prunable, and objects with unbounded boxes (half-spaces), are kept outside the
+/// tree and evaluated by every query, so the result is always right.
 
 #include <algorithm>
 #include <cmath>
@@ -31,9 +34,6 @@
 
 namespace ebgeom {
 
-/// True when S(p) >= distance from p to S.bounds() for p outside the box (see the file comment).
-template <class S> struct prunable_in_union : std::bool_constant<S::kind == SdfKind::exact> {};
-
 /// Union of `S` objects with BVH pruning. Kind: `bound` for exact (or bound) objects — exact
 /// outside, a bound inside where objects overlap — and `implicit` for implicit ones.
 template <class S, int K = 4> class BvhUnion {
@@ -43,7 +43,9 @@ template <class S, int K = 4> class BvhUnion {
   using scalar_type = sdf_scalar_t<S>;
   using T = scalar_type;
   static constexpr SdfKind kind = weakest(S::kind, SdfKind::bound);
-  static constexpr bool prunes = prunable_in_union<S>::value;
+  /// True when some objects can be pruned (statically, or object by object for run-time
+  /// composed types such as `AnySdf<T>`).
+  static constexpr bool prunes = may_prune_v<S>;
 
   BvhUnion() = default;
 
@@ -56,7 +58,9 @@ template <class S, int K = 4> class BvhUnion {
     for (std::size_t i = 0; i < objects.size(); ++i) {
       const Aabb<T> b = objects[i].bounds();
       box_.extend(b);
-      if (b.is_empty() || !all_finite(b.lo) || !all_finite(b.hi)) {
+      // unbounded, or not prunable (only types that decide per object): every query evaluates it
+      if (b.is_empty() || !all_finite(b.lo) || !all_finite(b.hi) ||
+          (prunes && !is_prunable(objects[i]))) {
         unbounded_.push_back(objects[i]);
         unbounded_order_.push_back(std::uint32_t(i));
         continue;
@@ -134,8 +138,9 @@ template <class S, int K = 4> class BvhUnion {
   /// Objects in the tree, in leaf order; `order()[i]` is the input index of `objects()[i]`.
   const std::vector<S>& objects() const noexcept { return objects_; }
   const std::vector<std::uint32_t>& order() const noexcept { return order_; }
-  /// Objects with unbounded boxes (kept outside the tree, evaluated by every query), in input
-  /// order; `unbounded_order()[i]` is the input index of `unbounded()[i]`.
+  /// Objects kept outside the tree and evaluated by every query (unbounded boxes, or objects that
+  /// `is_prunable` refuses), in input order; `unbounded_order()[i]` is the input index of
+  /// `unbounded()[i]`.
   const std::vector<S>& unbounded() const noexcept { return unbounded_; }
   const std::vector<std::uint32_t>& unbounded_order() const noexcept { return unbounded_order_; }
   const bvh::WideBvh<T, K>& tree() const noexcept { return bvh_; }

@@ -55,6 +55,46 @@ template <class S> inline constexpr bool is_sdf_v = detail::is_sdf<S>::value;
 /// Scalar type of an SDF.
 template <class S> using sdf_scalar_t = typename S::scalar_type;
 
+/// True when S(p) >= the distance from p to S.bounds() for every p outside the box, so a union
+/// may skip the object when its box is farther than the best value found (`BvhUnion`,
+/// `CachedUnion`). True for exact SDFs whose box contains the zero level set and the inside;
+/// specialise it for other types that qualify.
+template <class S> struct prunable_in_union : std::bool_constant<S::kind == SdfKind::exact> {};
+
+namespace detail {
+template <class S, class = void> struct has_dynamic_kind_member : std::false_type {};
+template <class S>
+struct has_dynamic_kind_member<S, std::void_t<decltype(std::declval<const S&>().dynamic_kind())>>
+    : std::true_type {};
+template <class S, class = void> struct has_dynamic_prunable_member : std::false_type {};
+template <class S>
+struct has_dynamic_prunable_member<
+    S, std::void_t<decltype(bool(std::declval<const S&>().dynamic_prunable()))>> : std::true_type {
+};
+} // namespace detail
+
+/// True when a union may prune some objects of type `S`: statically (`prunable_in_union<S>`) or,
+/// for run-time composed types that report their own kind (`dynamic_kind()`, e.g. `AnySdf`,
+/// `SignedMeshSdf`) or prunability (`dynamic_prunable()`), object by object (`is_prunable`).
+template <class S>
+inline constexpr bool may_prune_v =
+    prunable_in_union<S>::value || detail::has_dynamic_prunable_member<S>::value ||
+    detail::has_dynamic_kind_member<S>::value;
+
+/// Whether the object `s` may be pruned by a union (see `prunable_in_union`):
+/// `s.dynamic_prunable()` when `S` has it, else `prunable_in_union<S>`, else `s.dynamic_kind() ==
+/// exact` when `S` reports its kind at run time, else false.
+template <class S> constexpr bool is_prunable(const S& s) noexcept {
+  if constexpr (detail::has_dynamic_prunable_member<S>::value)
+    return bool(s.dynamic_prunable());
+  else if constexpr (prunable_in_union<S>::value)
+    return (void)s, true;
+  else if constexpr (detail::has_dynamic_kind_member<S>::value)
+    return s.dynamic_kind() == SdfKind::exact;
+  else
+    return (void)s, false;
+}
+
 #if defined(__cpp_concepts)
 template <class S>
 concept Sdf = is_sdf_v<S>;

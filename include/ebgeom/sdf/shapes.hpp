@@ -9,9 +9,12 @@
 /// as 2D problems in the shape's meridian or cross-section. All evaluation is O(1), noexcept and
 /// allocation-free; shapes are immutable after construction, so concurrent calls are safe.
 ///
-/// Preconditions (not checked, documented per shape) are on sizes: radii and half extents are
-/// non-negative, rounding radii do not exceed the size they round. Violations give meaningless
-/// values, never undefined behaviour.
+/// Preconditions (documented per shape) are on sizes: radii and half extents are non-negative,
+/// rounding radii do not exceed the size they round. The violations that a port from EBGeometry
+/// is likely to hit are loud rather than silent: a negative radius (Sphere, Capsule,
+/// CappedCylinder, InfiniteCylinder, Torus's tube) and a zero direction (InfiniteCylinder's axis,
+/// Plane's normal) make every value NaN, instead of an empty shape, a ball or a plane through the
+/// origin. Other violations give meaningless values, never undefined behaviour.
 
 #include <algorithm>
 #include <cmath>
@@ -74,16 +77,23 @@ template <class T> inline T extrude(T d2, T z, T half_height) noexcept {
 }
 constexpr double pi = 3.14159265358979323846;
 constexpr double sqrt3 = 1.7320508075688772935;
+/// `v` when `ok`, NaN otherwise: how shapes with an out-of-range size make themselves seen.
+template <class T> constexpr T nan_unless(bool ok, T v) noexcept {
+  return ok ? v : std::numeric_limits<T>::quiet_NaN();
+}
 } // namespace detail
 
-/// Ball of `radius` around `center`. Exact. Bounds: the ball's box.
+/// Ball of `radius` (>= 0; negative gives NaN values) around `center`. Exact. Bounds: the
+/// ball's box.
 template <class T> struct Sphere {
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
   Vec3<T> center;
   T radius;
 
-  T operator()(const Vec3<T>& p) const noexcept { return norm(p - center) - radius; }
+  T operator()(const Vec3<T>& p) const noexcept {
+    return detail::nan_unless(radius >= T(0), norm(p - center) - radius);
+  }
   Aabb<T> bounds() const noexcept { return Aabb<T>::of(center).grown(radius); }
 };
 
@@ -124,7 +134,8 @@ template <class T> struct RoundedBox {
 };
 
 /// Torus around the z axis through `center`: tube of radius `minor` around the circle of radius
-/// `major` (0 <= minor <= major). Exact. Rotate it for other axes.
+/// `major` (0 <= minor <= major; a negative `minor` gives NaN values). Exact. Rotate it for other
+/// axes.
 template <class T> struct Torus {
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
@@ -135,7 +146,7 @@ template <class T> struct Torus {
   T operator()(const Vec3<T>& p) const noexcept {
     const Vec3<T> q = p - center;
     const T rx = std::sqrt(q.x * q.x + q.y * q.y) - major;
-    return std::sqrt(rx * rx + q.z * q.z) - minor;
+    return detail::nan_unless(minor >= T(0), std::sqrt(rx * rx + q.z * q.z) - minor);
   }
   Aabb<T> bounds() const noexcept {
     const T r = major + minor;
@@ -181,8 +192,8 @@ template <class T> struct CappedTorus {
   }
 };
 
-/// Cylinder of `radius` around segment a-b (any orientation), with flat caps. Exact: the 2D box
-/// distance in the (radial, axial) half-plane.
+/// Cylinder of `radius` (>= 0; negative gives NaN values) around segment a-b (any orientation),
+/// with flat caps. Exact: the 2D box distance in the (radial, axial) half-plane.
 template <class T> struct CappedCylinder {
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
@@ -192,7 +203,9 @@ template <class T> struct CappedCylinder {
   T operator()(const Vec3<T>& p) const noexcept {
     T h, rho, len;
     detail::axial_radial(p, a, b, h, rho, len);
-    return detail::box2_from_q(rho - radius, std::abs(h - len * T(0.5)) - len * T(0.5));
+    return detail::nan_unless(
+        radius >= T(0),
+        detail::box2_from_q(rho - radius, std::abs(h - len * T(0.5)) - len * T(0.5)));
   }
   Aabb<T> bounds() const noexcept { return Aabb<T>::of(a, b).grown(radius); }
 };
@@ -217,7 +230,7 @@ template <class T> struct RoundedCylinder {
 };
 
 /// Infinite cylinder of `radius` around the line through `point` along `axis` (non-zero, any
-/// length). Exact. Bounds: infinite.
+/// length). Exact. Bounds: infinite. A zero axis or a negative radius gives NaN values.
 template <class T> struct InfiniteCylinder {
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
@@ -229,12 +242,12 @@ template <class T> struct InfiniteCylinder {
     const Vec3<T> q = p - point;
     const T aa = dot(axis, axis);
     const T t = aa > T(0) ? dot(q, axis) / aa : T(0);
-    return norm(q - axis * t) - radius;
+    return detail::nan_unless(aa > T(0) && radius >= T(0), norm(q - axis * t) - radius);
   }
   Aabb<T> bounds() const noexcept { return Aabb<T>::infinite(); }
 };
 
-/// Segment a-b swept by a ball of `radius`. Exact.
+/// Segment a-b swept by a ball of `radius` (>= 0; negative gives NaN values). Exact.
 template <class T> struct Capsule {
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
@@ -245,7 +258,7 @@ template <class T> struct Capsule {
     const Vec3<T> ab = b - a, ap = p - a;
     const T l2 = dot(ab, ab);
     const T h = l2 > T(0) ? clamp(dot(ap, ab) / l2, T(0), T(1)) : T(0);
-    return norm(ap - ab * h) - radius;
+    return detail::nan_unless(radius >= T(0), norm(ap - ab * h) - radius);
   }
   Aabb<T> bounds() const noexcept { return Aabb<T>::of(a, b).grown(radius); }
 };
@@ -302,7 +315,8 @@ template <class T> struct InfiniteCone {
 };
 
 /// Half-space {p : dot(normal, p) <= offset * |normal|}: the plane at signed `offset` from the
-/// origin along the (non-zero) `normal`, inside opposite the normal. Exact. Bounds: infinite.
+/// origin along the (non-zero) `normal`, inside opposite the normal. Exact. Bounds: infinite. A
+/// zero normal defines no plane: every value is NaN.
 template <class T> struct Plane {
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
@@ -316,7 +330,7 @@ template <class T> struct Plane {
   }
   T operator()(const Vec3<T>& p) const noexcept {
     const T n = norm(normal);
-    return (n > T(0) ? dot(normal, p) / n : T(0)) - offset;
+    return detail::nan_unless(n > T(0), (n > T(0) ? dot(normal, p) / n : T(0)) - offset);
   }
   Aabb<T> bounds() const noexcept { return Aabb<T>::infinite(); }
 };

@@ -245,6 +245,10 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
  private:
   static Result<SignedMeshSdf> make_with(TriangleMesh<T> mesh, const SignChoice& choice,
                                          const SignOptions& opt) {
+    if (int(choice.mode) > int(SignMode::automatic))
+      return make_error(ErrorCode::invalid_argument, "sign mode ", int(choice.mode),
+                        " is not a SignMode (expected pseudonormal, winding, fast_winding, "
+                        "unsigned_distance or automatic)");
     SignedMeshSdf s;
     s.mode_ = choice.mode;
     s.reason_ = choice.reason;

@@ -16,16 +16,26 @@
 ///    exceeds, in magnitude, the distance to its own zero set; they are not exact in general
 ///    (e.g. offsetting a non-convex shape outwards is exact outside but not inside);
 ///  - an `implicit` operand gives an `implicit` result.
-/// Rotations take degrees about a coordinate axis (as EBGeometry's `rotate(angle, axis)`) or an
+/// Rotations take degrees about a coordinate axis given as an `Axis` (`rotate(s, Axis::x, 90)`
+/// is EBGeometry's `rotate(90, 0)`: the shape comes first, then the axis, then the angle) or an
 /// arbitrary axis, a `Quaternion` or a `Mat3`; they rotate the *shape* (the point is rotated back).
+///
+/// No silent identity: an EBGeometry-order call `rotate(s, 90, 0)` does not compile (a number is
+/// not an `Axis`; the error message names the right call), and arguments that describe no
+/// transform (an `Axis` forced out of range by a cast, a zero or non-finite rotation axis or
+/// quaternion, a zero reflection normal, a scale factor that is not positive and finite) give an
+/// SDF whose every value is NaN, so the mistake shows in the first output instead of leaving the
+/// shape where it was.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/axis.hpp"
 #include "ebgeom/core/rotation.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/sdf/concepts.hpp"
@@ -46,6 +56,8 @@ template <class T, class F> inline Aabb<T> map_box(const Aabb<T>& b, F&& f) noex
 template <class S> constexpr SdfKind at_best_bound() noexcept {
   return weakest(S::kind, SdfKind::bound);
 }
+template <class T> constexpr T quiet_nan() noexcept { return std::numeric_limits<T>::quiet_NaN(); }
+template <class... A> inline constexpr bool always_false_v = false;
 } // namespace detail
 
 /// `shape` moved by `t`: S(p - t). Keeps the kind.
@@ -180,7 +192,8 @@ template <class S> struct Elongated {
 };
 
 /// Mirror image of `shape` across the plane {x : dot(n, x) = d} (n non-zero): S(p - 2 (n.p - d)
-/// n / |n|^2). An isometry: keeps the kind.
+/// n / |n|^2). An isometry: keeps the kind. A zero or non-finite `n` defines no plane: every value
+/// and the bounds are NaN.
 template <class S> struct Reflected {
   EBGEOM_REQUIRE_SDF(S);
   using T = sdf_scalar_t<S>;
@@ -192,38 +205,51 @@ template <class S> struct Reflected {
 
   Vec3<T> reflect_point(const Vec3<T>& p) const noexcept {
     const T nn = dot(n, n);
-    if (!(nn > T(0))) return p;
+    if (!(nn > T(0)) || !std::isfinite(nn)) return Vec3<T>::constant(detail::quiet_nan<T>());
     const T k = T(2) * (dot(n, p) - d * std::sqrt(nn)) / nn;
     return p - n * k;
   }
   T operator()(const Vec3<T>& p) const noexcept { return shape(reflect_point(p)); }
   Aabb<T> bounds() const noexcept {
+    const T nn = dot(n, n);
+    if (!(nn > T(0)) || !std::isfinite(nn)) {
+      const Vec3<T> q = Vec3<T>::constant(detail::quiet_nan<T>());
+      return {q, q};
+    }
     return detail::map_box(shape.bounds(), [this](const Vec3<T>& q) { return reflect_point(q); });
   }
 };
 
 /// Mirror symmetry about the coordinate plane `axis` = 0: the part of `shape` on the positive
 /// side plus its mirror image, S(p with p[axis] -> |p[axis]|). Exact for operands lying on the
-/// positive side; in general `bound` (kind: exact -> bound).
+/// positive side; in general `bound` (kind: exact -> bound). An `Axis` forced out of range by a
+/// cast gives NaN values and bounds.
 template <class S> struct Mirrored {
   EBGEOM_REQUIRE_SDF(S);
   using T = sdf_scalar_t<S>;
   using scalar_type = T;
   static constexpr SdfKind kind = detail::at_best_bound<S>();
   S shape;
-  int axis;
+  Axis axis;
 
   T operator()(const Vec3<T>& p) const noexcept {
+    if (!is_valid(axis)) return detail::quiet_nan<T>();
+    const int a = index(axis);
     Vec3<T> q = p;
-    if (axis >= 0 && axis <= 2) q[axis] = std::abs(q[axis]);
+    q[a] = std::abs(q[a]);
     return shape(q);
   }
   Aabb<T> bounds() const noexcept {
     Aabb<T> b = shape.bounds();
-    if (b.is_empty() || axis < 0 || axis > 2) return b;
-    const T m = std::max(std::abs(b.lo[axis]), std::abs(b.hi[axis]));
-    b.lo[axis] = -m;
-    b.hi[axis] = m;
+    if (!is_valid(axis)) {
+      const Vec3<T> n = Vec3<T>::constant(detail::quiet_nan<T>());
+      return {n, n};
+    }
+    const int a = index(axis);
+    if (b.is_empty()) return b;
+    const T m = std::max(std::abs(b.lo[a]), std::abs(b.hi[a]));
+    b.lo[a] = -m;
+    b.hi[a] = m;
     return b;
   }
 };
@@ -340,16 +366,29 @@ template <class S> Translated<S> translate(S shape, const Vec3<sdf_scalar_t<S>>&
 template <class S> Rotated<S> rotate(S shape, const Mat3<sdf_scalar_t<S>>& r) noexcept {
   return {std::move(shape), r};
 }
-/// `shape` rotated by the unit quaternion `q`.
+/// `shape` rotated by the quaternion `q` (normalised here; a zero quaternion gives NaN values).
 template <class S> Rotated<S> rotate(S shape, const Quaternion<sdf_scalar_t<S>>& q) noexcept {
   return {std::move(shape), q.normalized().to_mat3()};
 }
-/// `shape` rotated by `degrees` about coordinate axis `axis` (0 = x, 1 = y, 2 = z), right-handed,
-/// as EBGeometry's `rotate(angle, axis)`. Quarter turns are exact.
-template <class S> Rotated<S> rotate(S shape, int axis, sdf_scalar_t<S> degrees) noexcept {
+/// `shape` rotated by `degrees` about coordinate axis `axis`, right-handed: EBGeometry's
+/// `rotate(angle, axis)` is `rotate(shape, Axis::..., angle)` (shape, axis, angle, in that order).
+/// Quarter turns are exact.
+template <class S> Rotated<S> rotate(S shape, Axis axis, sdf_scalar_t<S> degrees) noexcept {
   return {std::move(shape), Mat3<sdf_scalar_t<S>>::coordinate_axis(axis, degrees)};
 }
-/// `shape` rotated by `degrees` about the (non-zero) direction `axis` through the origin.
+/// Catches a coordinate axis given as a number, in either order (`rotate(s, 90, 0)` as
+/// EBGeometry's `rotate(angle, axis)`, or `rotate(s, 2, 90)`): a compile error that names the right
+/// call, never a silent identity.
+template <class S, class A, class D,
+          class = std::enable_if_t<std::is_arithmetic_v<A> && std::is_arithmetic_v<D>>>
+void rotate(S, A, D) noexcept {
+  static_assert(detail::always_false_v<S, A, D>,
+                "ebgeom: rotate takes (shape, Axis, degrees), e.g. rotate(s, ebgeom::Axis::x, 90);"
+                " a number is not an axis. EBGeometry's rotate(angle, axis) is "
+                "rotate(s, ebgeom::Axis::{x,y,z}, angle)");
+}
+/// `shape` rotated by `degrees` about the direction `axis` through the origin (a zero or
+/// non-finite `axis` gives NaN values).
 template <class S>
 Rotated<S> rotate(S shape, const Vec3<sdf_scalar_t<S>>& axis, sdf_scalar_t<S> degrees) noexcept {
   return {std::move(shape), Mat3<sdf_scalar_t<S>>::axis_degrees(axis, degrees)};
@@ -366,9 +405,12 @@ RigidTransformed<S> transform(S shape, const Quaternion<sdf_scalar_t<S>>& q,
                               const Vec3<sdf_scalar_t<S>>& t) noexcept {
   return {std::move(shape), q.normalized().to_mat3(), t};
 }
-/// `shape` scaled by `factor` (> 0) about the origin.
+/// `shape` scaled by `factor` (> 0) about the origin. A factor that is not positive and finite
+/// (0 would collapse the shape, a negative one would mirror it and flip the sign) gives NaN values.
 template <class S> Scaled<S> scale(S shape, sdf_scalar_t<S> factor) noexcept {
-  return {std::move(shape), factor};
+  using T = sdf_scalar_t<S>;
+  const bool ok = factor > T(0) && std::isfinite(factor);
+  return {std::move(shape), ok ? factor : detail::quiet_nan<T>()};
 }
 /// S - r (rounding / offset).
 template <class S> Offset<S> offset(S shape, sdf_scalar_t<S> r) noexcept {
@@ -382,14 +424,21 @@ template <class S> Shell<S> shell(S shape, sdf_scalar_t<S> t) noexcept {
 template <class S> Elongated<S> elongate(S shape, const Vec3<sdf_scalar_t<S>>& h) noexcept {
   return {std::move(shape), max(h, Vec3<sdf_scalar_t<S>>::zero())};
 }
-/// Mirror image across the plane dot(n, x) = d (n non-zero, any length).
+/// Mirror image across the plane dot(n, x) = d (n non-zero, any length; zero gives NaN values).
 template <class S>
 Reflected<S> reflect(S shape, const Vec3<sdf_scalar_t<S>>& n, sdf_scalar_t<S> d = 0) noexcept {
   return {std::move(shape), n, d};
 }
-/// Symmetrise about the coordinate plane `axis` = 0.
-template <class S> Mirrored<S> mirror(S shape, int axis) noexcept {
+/// Symmetrise about the coordinate plane `axis` = 0: `mirror(s, Axis::x)`.
+template <class S> Mirrored<S> mirror(S shape, Axis axis) noexcept {
   return {std::move(shape), axis};
+}
+/// Catches a coordinate axis given as a number: a compile error naming the right call.
+template <class S, class A, class = std::enable_if_t<std::is_arithmetic_v<A>>>
+void mirror(S, A) noexcept {
+  static_assert(detail::always_false_v<S, A>,
+                "ebgeom: mirror takes (shape, Axis), e.g. mirror(s, ebgeom::Axis::x); a number is "
+                "not an axis");
 }
 /// -S.
 template <class S> Complement<S> complement(S shape) noexcept { return {std::move(shape)}; }

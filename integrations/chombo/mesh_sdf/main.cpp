@@ -1,20 +1,37 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-// ebgeom + Chombo3 EB: reads a surface mesh (STL, PLY, OBJ or VTK; a generated icosphere when no
-// file is given), builds its signed distance once, builds the EB index space with GeometryShop +
-// EBIndexSpace::define, and writes the implicit function at cell centres (HDF5 builds).
+// ebgeom + Chombo3 EB: builds the EB index space (GeometryShop + EBIndexSpace::define) of a
+// preset geometry (EBGeometry's `which_geom`), prints the cut-cell count and the fluid volume,
+// and writes the implicit function at cell centres (HDF5 builds).
 //
-//   mpirun -np 4 ./main3d.*.ex mesh_sdf.inputs
+//   ./main3d.Linux.64.g++.gfortran.OPT.ex mesh_sdf.inputs mesh_sdf.which_geom=mesh
+//   mesh_sdf.file=part.stl
 //
-// Parameters (ParmParse, prefix `mesh_sdf.`): file (none -> icosphere), n_cells (64), grid_size
-// (16), padding (0.1), fluid_inside (0), z_slice (0.0, for 2D builds), output ("mesh_sdf.hdf5").
+// Presets (`mesh_sdf.which_geom`), each with its domain box:
+//   sphere         ebgeom's analytic sphere, centre (0.5, 0.5, 0.5), radius `sphere_radius` (0.3),
+//                  in the unit cube (at n_cells = 32 and R = 0.3: 1,760 cut cells in 3D)
+//   chombo_sphere  the same sphere given to Chombo directly (Chombo's `SphereIF`): the reference
+//   mesh           the mesh in `file` (a generated icosphere without one), in a cube around its
+//                  bounds with `padding` times its largest extent on each side
+//   airfoil, dodecahedron, armadillo
+//                  EBGeometry's cases: the mesh in `file` (default airfoil.ply, dodecahedron.ply,
+//                  armadillo.ply) in EBGeometry's domain box for it
+// `prob_lo` / `prob_hi` (3 numbers each) override any preset's box. Cells are cubes: `n_cells`
+// along the box's longest side, as many as fit along the others.
 //
-// Not compiled in ebgeom's CI (Chombo is not installed there); the adapter it uses is tested
-// against stand-ins of the Chombo API. See docs/integrations.md.
+// Other parameters (prefix `mesh_sdf.`): grid_size (16), fluid_inside (0: flow around the
+// object, EBGeometry's flipSign = true; 1: flow inside it, EBGeometry's examples' flipSign =
+// false), z_slice (2D builds: the plane cut through the 3D geometry; default 0, or the sphere's
+// centre for the sphere presets), output ("mesh_sdf.hdf5").
+//
+// Chombo builds an index space even when no cell is fluid (a 2D slice that misses the object
+// with the fluid inside it, say); this example then says so instead of writing an all-covered
+// field without comment.
 
-// ebgeom
+// ebgeom (first: its headers must not see macros from Chombo)
 #include "ebgeom/adapters/shared_mesh_sdf.hpp"
 #include "ebgeom/mesh/generate.hpp"
+#include "ebgeom/sdf/shapes.hpp"
 #include "ebgeom_chombo.hpp"
 
 // Chombo
@@ -28,24 +45,145 @@
 #include "GeometryShop.H"
 #include "LoadBalance.H"
 #include "ParmParse.H"
+#include "SphereIF.H"
 #include "parstream.H"
 
 #include "UsingNamespace.H"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <string>
+#include <vector>
 
 namespace {
 
-using T = double; // precision of the mesh SDF (float halves its memory)
-using Sdf = ebgeom::MeshSdf<T>;
+using T = double; // precision of the ebgeom geometry (float halves a mesh's memory)
 
-ebgeom::SharedMeshSdf<T> load_geometry(const std::string& file) {
-  ebgeom::Result<ebgeom::SharedMeshSdf<T>> sdf =
-      file.empty() ? ebgeom::make_shared_mesh_sdf(ebgeom::make_icosphere<T>(4, T(1)).value())
-                   : ebgeom::read_shared_mesh_sdf<T>(file);
-  if (!sdf) MayDay::Error(("mesh_sdf: " + sdf.error().what()).c_str());
-  return *sdf;
+struct Params {
+  std::string which_geom = "sphere", file, output = "mesh_sdf.hdf5";
+  int n_cells = 64, grid_size = 16, fluid_inside = 0;
+  Real padding = 0.1, z_slice = 0.0, sphere_radius = 0.3;
+  bool z_slice_given = false;
+  std::vector<Real> prob_lo, prob_hi;
+};
+
+struct Preset {
+  const char* name;
+  const char* default_file;
+  std::array<double, 3> lo, hi;
+};
+// EBGeometry's domain boxes for its mesh cases.
+const Preset ebgeometry_presets[] = {
+    {"airfoil", "airfoil.ply", {-100, -100, -75}, {400, 100, 125}},
+    {"dodecahedron", "dodecahedron.ply", {-2, -2, -2}, {2, 2, 2}},
+    {"armadillo", "armadillo.ply", {-100, -75, -100}, {100, 125, 100}},
+};
+
+struct DomainBox {
+  std::array<double, 3> lo, hi;
+};
+
+DomainBox cube_around(const ebgeom::Aabb<T>& b, double padding) {
+  const double ext =
+      std::max({double(b.hi.x - b.lo.x), double(b.hi.y - b.lo.y), double(b.hi.z - b.lo.z)});
+  const double half = ext * (0.5 + padding);
+  const double c[3] = {0.5 * double(b.lo.x + b.hi.x), 0.5 * double(b.lo.y + b.hi.y),
+                       0.5 * double(b.lo.z + b.hi.z)};
+  return {{c[0] - half, c[1] - half, c[2] - half}, {c[0] + half, c[1] + half, c[2] + half}};
+}
+
+// Builds the EB index space for the Chombo implicit function `f`, prints the cut cells and the
+// fluid volume, and writes the function at cell centres. The same code for ebgeom's and
+// Chombo's own functions.
+void run(const BaseIF& f, const DomainBox& box, const Params& prm) {
+  double longest = 0;
+  for (int d = 0; d < SpaceDim; ++d) longest = std::max(longest, box.hi[d] - box.lo[d]);
+  const Real dx = Real(longest / prm.n_cells);
+  RealVect lo_corner;
+  IntVect hi_cell;
+  for (int d = 0; d < SpaceDim; ++d) {
+    lo_corner[d] = Real(box.lo[d]);
+    hi_cell[d] = std::max(1, int(std::lround((box.hi[d] - box.lo[d]) / dx))) - 1;
+  }
+  const ProblemDomain domain(IntVect::Zero, hi_cell);
+
+  // GeometryShop clones the function (newImplicitFunction): for ebgeom, one shared pointer.
+  const GeometryShop workshop(f, 0, dx * RealVect::Unit);
+  EBIndexSpace* ebis = Chombo_EBIS::instance();
+  ebis->define(domain, lo_corner, dx, workshop, prm.grid_size, -1);
+
+  Vector<int> procs;
+  Vector<Box> boxes;
+  domainSplit(domain, boxes, prm.grid_size, prm.grid_size);
+  mortonOrdering(boxes);
+  LoadBalance(procs, boxes);
+  const DisjointBoxLayout dbl(boxes, procs);
+  EBISLayout ebisl;
+  ebis->fillEBISLayout(ebisl, dbl, domain, 1);
+
+  // Cut cells (irregular volumes) and the fluid volume; the function at cell centres.
+  long cut = 0, fluid = 0;
+  Real volume = 0;
+  LevelData<EBCellFAB> data(dbl, 1, IntVect::Zero, EBCellFactory(ebisl));
+  for (DataIterator dit(dbl); dit.ok(); ++dit) {
+    const EBISBox& ebis_box = ebisl[dit()];
+    EBCellFAB& fab = data[dit()];
+    fab.setVal(0.0);
+    BaseFab<Real>& values = fab.getSingleValuedFAB();
+    for (BoxIterator bit(dbl[dit()]); bit.ok(); ++bit) {
+      const IntVect iv = bit();
+      RealVect x;
+      for (int d = 0; d < SpaceDim; ++d) x[d] = lo_corner[d] + (iv[d] + 0.5) * dx;
+      values(iv, 0) = f.value(x);
+      if (ebis_box.isCovered(iv)) continue;
+      ++fluid;
+      if (ebis_box.isRegular(iv)) {
+        volume += 1;
+        continue;
+      }
+      const Vector<VolIndex> vofs = ebis_box.getVoFs(iv);
+      for (int v = 0; v < int(vofs.size()); ++v) {
+        ++cut;
+        volume += ebis_box.volFrac(vofs[v]);
+      }
+    }
+  }
+#ifdef CH_MPI
+  long sums[2] = {cut, fluid}, total[2];
+  MPI_Allreduce(sums, total, 2, MPI_LONG, MPI_SUM, Chombo_MPI::comm);
+  cut = total[0];
+  fluid = total[1];
+  double vol = double(volume), vol_total = 0;
+  MPI_Allreduce(&vol, &vol_total, 1, MPI_DOUBLE, MPI_SUM, Chombo_MPI::comm);
+  volume = Real(vol_total);
+#endif
+  Real cell = 1;
+  for (int d = 0; d < SpaceDim; ++d) cell *= dx;
+  pout() << "mesh_sdf: " << cut << " cut cells, fluid volume " << volume * cell << std::endl;
+  if (fluid == 0) {
+    pout() << "mesh_sdf: no cell of the domain is fluid: the object "
+           << (prm.fluid_inside ? "does not reach into the domain and the fluid is inside it "
+                                  "(mesh_sdf.fluid_inside = 1)"
+                                : "covers the whole domain")
+#if CH_SPACEDIM == 2
+           << "; in 2D the geometry is the slice z = " << prm.z_slice
+           << " of the 3D object: choose mesh_sdf.z_slice through it"
+#endif
+           << ". Chombo builds an all-covered index space (AMReX stops on the same input)."
+           << std::endl;
+  }
+
+#ifdef CH_USE_HDF5
+  // Named output with the real cell size (the default writer names it component_0, dx = 1).
+  Vector<std::string> names(1, "implicit_function");
+  Vector<Real> covered_values(1, 0.0);
+  writeEBHDF5(prm.output, dbl, data, names, domain, dx, 1.0, 0.0, false, covered_values);
+  pout() << "mesh_sdf: wrote " << prm.output << std::endl;
+#else
+  pout() << "mesh_sdf: built without HDF5, nothing written" << std::endl;
+#endif
+  ebis->clear();
 }
 
 } // namespace
@@ -58,76 +196,72 @@ int main(int argc, char* argv[]) {
     // The first argument, if any, is an input file; later ones override it (key=value).
     const char* in_file = argc > 1 ? argv[1] : nullptr;
     ParmParse pp(argc > 1 ? argc - 2 : 0, argc > 1 ? argv + 2 : argv, nullptr, in_file);
-    std::string file, output = "mesh_sdf.hdf5";
-    int n_cells = 64, grid_size = 16, fluid_inside = 0;
-    Real padding = 0.1, z_slice = 0.0;
-    pp.query("mesh_sdf.file", file);
-    pp.query("mesh_sdf.n_cells", n_cells);
-    pp.query("mesh_sdf.grid_size", grid_size);
-    pp.query("mesh_sdf.padding", padding);
-    pp.query("mesh_sdf.fluid_inside", fluid_inside);
-    pp.query("mesh_sdf.z_slice", z_slice);
-    pp.query("mesh_sdf.output", output);
+    Params prm;
+    pp.query("mesh_sdf.which_geom", prm.which_geom);
+    pp.query("mesh_sdf.file", prm.file);
+    pp.query("mesh_sdf.n_cells", prm.n_cells);
+    pp.query("mesh_sdf.grid_size", prm.grid_size);
+    pp.query("mesh_sdf.padding", prm.padding);
+    pp.query("mesh_sdf.fluid_inside", prm.fluid_inside);
+    prm.z_slice_given = pp.contains("mesh_sdf.z_slice");
+    pp.query("mesh_sdf.z_slice", prm.z_slice);
+    pp.query("mesh_sdf.sphere_radius", prm.sphere_radius);
+    pp.query("mesh_sdf.output", prm.output);
+    if (pp.contains("mesh_sdf.prob_lo")) pp.queryarr("mesh_sdf.prob_lo", prm.prob_lo, 0, 3);
+    if (pp.contains("mesh_sdf.prob_hi")) pp.queryarr("mesh_sdf.prob_hi", prm.prob_hi, 0, 3);
+    const bool box_given = prm.prob_lo.size() == 3 && prm.prob_hi.size() == 3;
+    auto override_box = [&](const DomainBox& preset) {
+      return box_given ? DomainBox{{prm.prob_lo[0], prm.prob_lo[1], prm.prob_lo[2]},
+                                   {prm.prob_hi[0], prm.prob_hi[1], prm.prob_hi[2]}}
+                       : preset;
+    };
+    pout() << "mesh_sdf: which_geom = " << prm.which_geom << std::endl;
 
-    // 1. The geometry: read and build once, then share (every clone points at it).
-    const ebgeom::SharedMeshSdf<T> mesh = load_geometry(file);
-    pout() << "mesh_sdf: " << (file.empty() ? std::string("icosphere") : file) << ", "
-           << mesh->memory_bytes() / 1024 << " KiB of SDF" << std::endl;
-
-    // 2. The implicit function: negative in the fluid.
     ebgeom::EbOptions opt;
-    opt.fluid = fluid_inside ? ebgeom::FluidSide::inside : ebgeom::FluidSide::outside;
-    opt.z_slice = z_slice;
-    const ebgeom::ChomboImplicitFunction<Sdf> implicit_function(mesh, opt);
-
-    // 3. A cubic domain around the mesh, with `padding` * extent on each side.
-    const ebgeom::Aabb<T> b = mesh->bounds();
-    const Real ext =
-        std::max({Real(b.hi.x - b.lo.x), Real(b.hi.y - b.lo.y), Real(b.hi.z - b.lo.z)});
-    const Real half = ext * (0.5 + padding);
-    const Real centre[3] = {Real(0.5 * (b.lo.x + b.hi.x)), Real(0.5 * (b.lo.y + b.hi.y)),
-                            Real(0.5 * (b.lo.z + b.hi.z))};
-    RealVect lo_corner;
-    for (int d = 0; d < SpaceDim; ++d) lo_corner[d] = centre[d] - half;
-    const Real dx = 2 * half / n_cells;
-    const ProblemDomain domain(IntVect::Zero, (n_cells - 1) * IntVect::Unit);
-
-    // 4. The EB index space. GeometryShop clones the function (newImplicitFunction): cheap.
-    const GeometryShop workshop(implicit_function, 0, dx * RealVect::Unit);
-    EBIndexSpace* ebis = Chombo_EBIS::instance();
-    ebis->define(domain, lo_corner, dx, workshop, grid_size, -1);
-
-    // 5. Grids, the EBIS layout, and the implicit function at cell centres.
-    Vector<int> procs;
-    Vector<Box> boxes;
-    domainSplit(domain, boxes, grid_size, grid_size);
-    mortonOrdering(boxes);
-    LoadBalance(procs, boxes);
-    const DisjointBoxLayout dbl(boxes, procs);
-    EBISLayout ebisl;
-    ebis->fillEBISLayout(ebisl, dbl, domain, 1);
-
-    LevelData<EBCellFAB> data(dbl, 1, IntVect::Zero, EBCellFactory(ebisl));
-    for (DataIterator dit(dbl); dit.ok(); ++dit) {
-      EBCellFAB& fab = data[dit()];
-      fab.setVal(0.0);
-      BaseFab<Real>& values = fab.getSingleValuedFAB();
-      for (BoxIterator bit(dbl[dit()]); bit.ok(); ++bit) {
-        const IntVect iv = bit();
-        RealVect x;
-        for (int d = 0; d < SpaceDim; ++d) x[d] = lo_corner[d] + (iv[d] + 0.5) * dx;
-        values(iv, 0) = implicit_function.value(x);
+    opt.fluid = prm.fluid_inside ? ebgeom::FluidSide::inside : ebgeom::FluidSide::outside;
+    if (prm.which_geom == "sphere" || prm.which_geom == "chombo_sphere") {
+      if (!prm.z_slice_given) prm.z_slice = 0.5; // 2D: the slice through the centre
+      opt.z_slice = prm.z_slice;
+      const DomainBox box = override_box({{0, 0, 0}, {1, 1, 1}});
+      if (prm.which_geom == "sphere") {
+        const ebgeom::ChomboImplicitFunction<ebgeom::Sphere<T>> f(
+            ebgeom::Sphere<T>{{0.5, 0.5, 0.5}, T(prm.sphere_radius)}, opt);
+        run(f, box, prm);
+      } else {
+        RealVect centre;
+        for (int d = 0; d < SpaceDim; ++d) centre[d] = 0.5;
+        // 2D: the circle the plane z = z_slice cuts from the sphere
+        const Real dz = SpaceDim == 2 ? prm.z_slice - 0.5 : 0.0;
+        const Real r2 = prm.sphere_radius * prm.sphere_radius - dz * dz;
+        const SphereIF f(r2 > 0 ? std::sqrt(r2) : 0.0, centre, prm.fluid_inside != 0);
+        run(f, box, prm);
       }
+    } else {
+      const Preset* preset = nullptr;
+      for (const Preset& p : ebgeometry_presets)
+        if (prm.which_geom == p.name) preset = &p;
+      if (!preset && prm.which_geom != "mesh")
+        MayDay::Error(
+            ("mesh_sdf: unknown which_geom '" + prm.which_geom +
+             "' (expected sphere, chombo_sphere, mesh, airfoil, dodecahedron or armadillo)")
+                .c_str());
+      if (preset && prm.file.empty()) prm.file = preset->default_file;
+      ebgeom::Result<ebgeom::SharedMeshSdf<T>> made =
+          prm.file.empty()
+              ? ebgeom::make_shared_mesh_sdf(ebgeom::make_icosphere<T>(4, T(1)).value())
+              : ebgeom::read_shared_mesh_sdf<T>(prm.file);
+      if (!made) MayDay::Error(("mesh_sdf: " + made.error().what()).c_str());
+      const ebgeom::SharedMeshSdf<T> mesh = *made;
+      pout() << "mesh_sdf: " << (prm.file.empty() ? std::string("icosphere") : prm.file) << ", "
+             << mesh->triangle_count() << " triangles, " << mesh->memory_bytes() / 1024
+             << " KiB of SDF" << std::endl;
+      opt.z_slice = prm.z_slice;
+      const ebgeom::ChomboImplicitFunction<ebgeom::MeshSdf<T>> f(mesh, opt);
+      run(f,
+          override_box(preset ? DomainBox{preset->lo, preset->hi}
+                              : cube_around(mesh->bounds(), prm.padding)),
+          prm);
     }
-
-#ifdef CH_USE_HDF5
-    Vector<LevelData<EBCellFAB>*> levels(1, &data);
-    writeEBAMRname(&levels, output.c_str());
-    pout() << "mesh_sdf: wrote " << output << std::endl;
-#else
-    pout() << "mesh_sdf: built without HDF5, nothing written" << std::endl;
-#endif
-    ebis->clear();
   }
 #ifdef CH_MPI
   MPI_Finalize();

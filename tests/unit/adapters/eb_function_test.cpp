@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <type_traits>
 #include <vector>
@@ -58,6 +59,16 @@ TEST(EbFunction, EbSignMatchesTheDocumentedConvention) {
   const EbOptions defaults;
   EXPECT_EQ(defaults.fluid, FluidSide::outside);
   EXPECT_EQ(defaults.z_slice, 0.0);
+}
+
+TEST(EbFunction, OutOfRangeFluidSideIsNaNNotASide) {
+  static_assert(eb_sign(static_cast<FluidSide>(2)) == 0);
+  EbOptions opt;
+  opt.fluid = static_cast<FluidSide>(2);
+  const EbFunction<Ball<double>> f(Ball<double>{}, opt);
+  EXPECT_TRUE(std::isnan(f(3.0, 0.0, 0.0)));
+  EXPECT_TRUE(std::isnan(f(0.0, 0.0, 0.0)));
+  EXPECT_TRUE(std::isnan(f(0.5, 0.5)));
 }
 
 TEST(EbFunction, TwoDimensionalCallsEvaluateTheConfiguredSlice) {

@@ -64,7 +64,7 @@ template <class T> SharedMeshSdf<T> icosphere_sdf(int subdivisions = 3) {
 inline auto csg_scene() {
   using T = double;
   const auto part = subtract(Box<T>{{0.6, 0.4, 0.3}}, Sphere<T>{{0.6, 0.4, 0.3}, 0.35});
-  const auto arm = rotate(Capsule<T>{{-0.9, 0, 0}, {0.9, 0, 0}, 0.12}, 2, T(30));
+  const auto arm = rotate(Capsule<T>{{-0.9, 0, 0}, {0.9, 0, 0}, 0.12}, Axis::z, T(30));
   const auto ring = Torus<T>{{0.0, 0.0, -0.5}, 0.5, 0.08};
   return unite(part, arm, ring);
 }

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "test_support.hpp"
@@ -24,21 +26,28 @@ template <class T> void expect_near(const Vec3<T>& a, const Vec3<T>& b, T tol) {
 TYPED_TEST(RotationTest, CoordinateAxesRightHandedAndExactQuarterTurns) {
   using T = TypeParam;
   // 90 degrees about z takes x to y, about x takes y to z, about y takes z to x: exactly.
-  EXPECT_EQ(Mat3<T>::coordinate_axis(2, 90) * Vec3<T>::unit(0), Vec3<T>::unit(1));
-  EXPECT_EQ(Mat3<T>::coordinate_axis(0, 90) * Vec3<T>::unit(1), Vec3<T>::unit(2));
-  EXPECT_EQ(Mat3<T>::coordinate_axis(1, 90) * Vec3<T>::unit(2), Vec3<T>::unit(0));
-  EXPECT_EQ(Mat3<T>::coordinate_axis(2, -90) * Vec3<T>::unit(1), Vec3<T>::unit(0));
-  EXPECT_EQ(Mat3<T>::coordinate_axis(2, 450) * Vec3<T>::unit(0), Vec3<T>::unit(1));
-  EXPECT_EQ(Mat3<T>::coordinate_axis(0, 180) * Vec3<T>::unit(1), -Vec3<T>::unit(1));
-  EXPECT_EQ(Mat3<T>::coordinate_axis(7, 30), Mat3<T>::identity());
+  EXPECT_EQ(Mat3<T>::coordinate_axis(Axis::z, 90) * Vec3<T>::unit(0), Vec3<T>::unit(1));
+  EXPECT_EQ(Mat3<T>::coordinate_axis(Axis::x, 90) * Vec3<T>::unit(1), Vec3<T>::unit(2));
+  EXPECT_EQ(Mat3<T>::coordinate_axis(Axis::y, 90) * Vec3<T>::unit(2), Vec3<T>::unit(0));
+  EXPECT_EQ(Mat3<T>::coordinate_axis(Axis::z, -90) * Vec3<T>::unit(1), Vec3<T>::unit(0));
+  EXPECT_EQ(Mat3<T>::coordinate_axis(Axis::z, 450) * Vec3<T>::unit(0), Vec3<T>::unit(1));
+  EXPECT_EQ(Mat3<T>::coordinate_axis(Axis::x, 180) * Vec3<T>::unit(1), -Vec3<T>::unit(1));
+  // an Axis forced out of range is never a silent identity: every entry is NaN
+  for (const int bad : {-1, 3, 7, 90})
+    for (int i = 0; i < 9; ++i) {
+      EXPECT_TRUE(std::isnan(Mat3<T>::coordinate_axis(static_cast<Axis>(bad), 30).m[i]));
+      EXPECT_TRUE(std::isnan(Mat3<T>::coordinate_axis(static_cast<Axis>(bad), 0).m[i]));
+    }
+  EXPECT_TRUE(std::isnan(Quaternion<T>::coordinate_axis(static_cast<Axis>(3), 30).w));
   // 30 degrees about z: (cos 30, sin 30, 0), written from the definition
-  expect_near(Mat3<T>::coordinate_axis(2, 30) * Vec3<T>::unit(0),
+  expect_near(Mat3<T>::coordinate_axis(Axis::z, 30) * Vec3<T>::unit(0),
               Vec3<T>{T(std::sqrt(3.0) / 2), T(0.5), 0}, test::tol<T>());
-  expect_near(Quaternion<T>::coordinate_axis(2, 30).rotate(Vec3<T>::unit(0)),
+  expect_near(Quaternion<T>::coordinate_axis(Axis::z, 30).rotate(Vec3<T>::unit(0)),
               Vec3<T>{T(std::sqrt(3.0) / 2), T(0.5), 0}, test::tol<T>());
-  expect_near(Quaternion<T>::coordinate_axis(1, 90).rotate(Vec3<T>::unit(2)), Vec3<T>::unit(0),
-              test::tol<T>());
-  EXPECT_EQ(Quaternion<T>::coordinate_axis(1, 180).rotate(Vec3<T>::unit(2)), -Vec3<T>::unit(2));
+  expect_near(Quaternion<T>::coordinate_axis(Axis::y, 90).rotate(Vec3<T>::unit(2)),
+              Vec3<T>::unit(0), test::tol<T>());
+  EXPECT_EQ(Quaternion<T>::coordinate_axis(Axis::y, 180).rotate(Vec3<T>::unit(2)),
+            -Vec3<T>::unit(2));
 }
 
 TYPED_TEST(RotationTest, MatrixAndQuaternionAgreeAndAreOrthonormal) {
@@ -81,8 +90,39 @@ TYPED_TEST(RotationTest, CompositionOrder) {
   }
   const Quaternion<T> big{2, 0, 0, 2};
   EXPECT_NEAR(big.normalized().norm2(), T(1), test::tol<T>());
-  EXPECT_EQ((Quaternion<T>{0, 0, 0, 0}.normalized().w), T(1));
-  EXPECT_EQ(Mat3<T>::axis_angle(Vec3<T>::zero(), 1), Mat3<T>::identity());
+  // zero or non-finite axes and a zero quaternion describe no rotation: NaN, not the identity
+  EXPECT_TRUE(std::isnan(Quaternion<T>{0, 0, 0, 0}.normalized().w));
+  EXPECT_TRUE(std::isnan(Quaternion<T>::axis_angle(Vec3<T>::zero(), 1).x));
+  EXPECT_TRUE(std::isnan(Quaternion<T>::axis_degrees(Vec3<T>::zero(), 90).w));
+  const T inf = std::numeric_limits<T>::infinity();
+  for (const Vec3<T>& bad :
+       {Vec3<T>::zero(), Vec3<T>{inf, 0, 0}, Vec3<T>{std::numeric_limits<T>::quiet_NaN(), 1, 0}}) {
+    const Mat3<T> a = Mat3<T>::axis_angle(bad, 1), d = Mat3<T>::axis_degrees(bad, 90);
+    for (int i = 0; i < 9; ++i) {
+      EXPECT_TRUE(std::isnan(a.m[i])) << bad;
+      EXPECT_TRUE(std::isnan(d.m[i])) << bad;
+    }
+  }
   EXPECT_EQ(Mat3<T>::from_cols(Vec3<T>{1, 2, 3}, Vec3<T>{4, 5, 6}, Vec3<T>{7, 8, 9}),
             Mat3<T>::from_rows(Vec3<T>{1, 4, 7}, Vec3<T>{2, 5, 8}, Vec3<T>{3, 6, 9}));
+}
+
+TEST(Axis, CheckedConversionsAndNames) {
+  static_assert(index(Axis::x) == 0 && index(Axis::y) == 1 && index(Axis::z) == 2);
+  static_assert(!std::is_convertible_v<int, Axis>, "a number must not convert to an Axis");
+  static_assert(is_valid(Axis::z) && !is_valid(static_cast<Axis>(3)));
+  EXPECT_EQ(name(Axis::y), 'y');
+  EXPECT_EQ(name(static_cast<Axis>(-1)), '?');
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(index(axis_from_index(i).value()), i);
+  for (const int bad : {-1, 3, 90}) {
+    const auto r = axis_from_index(bad);
+    ASSERT_FALSE(r.has_value());
+    EXPECT_EQ(r.error().code, ErrorCode::invalid_argument);
+    EXPECT_NE(r.error().message.find(std::to_string(bad)), std::string::npos) << r.error().message;
+  }
+  EXPECT_EQ(axis_from_name("Z").value(), Axis::z);
+  EXPECT_EQ(axis_from_name("x").value(), Axis::x);
+  EXPECT_FALSE(axis_from_name("w").has_value());
+  EXPECT_FALSE(axis_from_name("").has_value());
+  EXPECT_FALSE(axis_from_name("xy").has_value());
 }

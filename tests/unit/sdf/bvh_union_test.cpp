@@ -4,13 +4,20 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstring>
+#include <memory>
+#include <random>
 #include <vector>
 
 #include "ebgeom/mesh/generate.hpp"
+#include "ebgeom/sdf/any_sdf.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
+#include "ebgeom/sdf/csg.hpp"
 #include "ebgeom/sdf/mesh_sdf.hpp"
 #include "ebgeom/sdf/shapes.hpp"
+#include "ebgeom/sdf/signed_mesh_sdf.hpp"
+#include "ebgeom/sdf/transforms.hpp"
 #include "test_support.hpp"
 #include "union_scenes.hpp"
 
@@ -27,6 +34,18 @@ template <class T> struct Slab { // unbounded: z < h
   T h;
   T operator()(const Vec3<T>& p) const noexcept { return p.z - h; }
   Aabb<T> bounds() const noexcept { return Aabb<T>::infinite(); }
+};
+/// An exact ball that counts its evaluations (to see that a union prunes).
+template <class T> struct CountingBall {
+  using scalar_type = T;
+  static constexpr SdfKind kind = SdfKind::exact;
+  Sphere<T> ball;
+  std::shared_ptr<std::atomic<long>> calls;
+  T operator()(const Vec3<T>& p) const noexcept {
+    calls->fetch_add(1, std::memory_order_relaxed);
+    return ball(p);
+  }
+  Aabb<T> bounds() const noexcept { return ball.bounds(); }
 };
 } // namespace
 
@@ -100,4 +119,86 @@ TYPED_TEST(BvhUnionTest, ABvhOfMeshBvhsEqualsTheUnionOfBruteForceMeshes) {
     for (const auto& m : refs) ref = std::min(ref, m(p));
     ASSERT_TRUE(same_bits(scene(p), ref)) << p;
   }
+}
+
+// A union of type-erased objects of mixed kinds: spheres, boxes, rotated boxes, BVH meshes, a
+// signed mesh (kind known only at run time), a smooth union (bound: not prunable) and a half-space
+// (unbounded). The prunable ones go in the tree; the value equals the linear union bit for bit.
+TYPED_TEST(BvhUnionTest, MixedTypeErasedUnionPrunesAndEqualsTheLinearUnion) {
+  using T = TypeParam;
+  static_assert(BvhUnion<AnySdf<T>>::prunes);
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> c(-3, 3), r(0.05, 0.3);
+  std::vector<AnySdf<T>> objects;
+  std::size_t not_prunable = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Vec3<T> at{T(c(rng)), T(c(rng)), T(c(rng))};
+    switch (i % 8) {
+    case 0:
+    case 1:
+    case 2:
+      objects.emplace_back(Sphere<T>{at, T(r(rng))});
+      break;
+    case 3:
+    case 4:
+      objects.emplace_back(translate(Box<T>{Vec3<T>{T(r(rng)), T(r(rng)), T(r(rng))}}, at));
+      break;
+    case 5:
+      objects.emplace_back(
+          translate(rotate(Box<T>{Vec3<T>{T(0.3), T(0.1), T(0.05)}}, Axis::z, T(30)), at));
+      break;
+    case 6: {
+      auto soup = make_icosphere<T>(1, T(r(rng))).value();
+      for (auto& v : soup.vertices) v += at;
+      if (i % 16 == 6)
+        objects.emplace_back(MeshSdf<T>::build(soup).value());
+      else
+        objects.emplace_back(SignedMeshSdf<T>::build(soup).value()); // automatic: exact here
+      break;
+    }
+    default:
+      objects.emplace_back(smooth_unite(Sphere<T>{at, T(0.1)},
+                                        Sphere<T>{at + Vec3<T>{T(0.1), 0, 0}, T(0.1)}, T(0.05)));
+      ++not_prunable;
+    }
+  }
+  objects.emplace_back(Plane<T>{Vec3<T>{0, 0, 1}, T(-5)}); // z < -5
+  ++not_prunable;
+  const BvhUnion<AnySdf<T>> u(objects);
+  EXPECT_EQ(u.size(), objects.size());
+  // only the bound (smooth) objects and the half-space are evaluated by every query
+  EXPECT_EQ(u.unbounded().size(), not_prunable);
+  EXPECT_EQ(u.objects().size(), objects.size() - not_prunable);
+  for (const auto& p : test::random_points(Aabb<T>::of({-4, -4, -6}, {4, 4, 4}), 3000, 5)) {
+    T ref = std::numeric_limits<T>::infinity();
+    for (const auto& o : objects) ref = std::min(ref, o(p));
+    ASSERT_TRUE(same_bits(u(p), ref)) << p << ": " << u(p) << " vs " << ref;
+    ASSERT_TRUE(same_bits(u.linear(p), ref));
+  }
+}
+
+// The type-erased union really prunes: one query on EBGeometry's lattice of 20^3 balls evaluates a
+// few dozen of them, not all 8,000 (as it did when AnySdf reported only its static kind).
+TYPED_TEST(BvhUnionTest, TypeErasedUnionEvaluatesFewObjectsPerQuery) {
+  using T = TypeParam;
+  const auto balls = lattice<T>(20, T(0.02));
+  auto calls = std::make_shared<std::atomic<long>>(0);
+  std::vector<AnySdf<T>> any;
+  std::vector<CountingBall<T>> direct;
+  for (const auto& b : balls) {
+    any.emplace_back(CountingBall<T>{b, calls});
+    direct.push_back(CountingBall<T>{b, calls});
+  }
+  const BvhUnion<AnySdf<T>> u(any);
+  const BvhUnion<CountingBall<T>> ud(direct);
+  ASSERT_TRUE(u.unbounded().empty());
+  const auto pts = test::random_points(Aabb<T>::of({-1, -1, -1}, {1, 1, 1}), 200, 9);
+  calls->store(0);
+  for (const auto& p : pts) (void)u(p);
+  const long erased = calls->load();
+  calls->store(0);
+  for (const auto& p : pts) (void)ud(p);
+  const long typed = calls->load();
+  EXPECT_EQ(erased, typed); // the same search as the statically typed union
+  EXPECT_LT(double(erased) / double(pts.size()), 100.0) << erased;
 }

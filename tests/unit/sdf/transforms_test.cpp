@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "ebgeom/sdf/shapes.hpp"
@@ -40,7 +42,7 @@ template <class T> struct TwiceSphere {
 
 // kinds derived from the operand
 static_assert(decltype(translate(Sphere<double>{}, {}))::kind == SdfKind::exact);
-static_assert(decltype(rotate(Box<double>{}, 2, 30.0))::kind == SdfKind::exact);
+static_assert(decltype(rotate(Box<double>{}, Axis::z, 30.0))::kind == SdfKind::exact);
 static_assert(decltype(scale(Torus<float>{}, 2.0f))::kind == SdfKind::exact);
 static_assert(decltype(transform(Box<float>{}, Mat3<float>{}, Vec3<float>{}))::kind ==
               SdfKind::exact);
@@ -49,12 +51,12 @@ static_assert(decltype(complement(Box<float>{}))::kind == SdfKind::exact);
 static_assert(decltype(offset(Box<float>{}, 1.0f))::kind == SdfKind::bound);
 static_assert(decltype(shell(Sphere<float>{}, 1.0f))::kind == SdfKind::bound);
 static_assert(decltype(elongate(Sphere<float>{}, {}))::kind == SdfKind::bound);
-static_assert(decltype(mirror(Sphere<float>{}, 0))::kind == SdfKind::bound);
+static_assert(decltype(mirror(Sphere<float>{}, Axis::x))::kind == SdfKind::bound);
 static_assert(decltype(mollify(Sphere<float>{}, 0.1f))::kind == SdfKind::bound);
 static_assert(decltype(repeat(Sphere<float>{}, {1, 1, 1}))::kind == SdfKind::bound);
 static_assert(decltype(translate(Ellipsoid<double>{}, {}))::kind == SdfKind::bound);
 static_assert(decltype(offset(TwiceSphere<double>{}, 1.0))::kind == SdfKind::implicit);
-static_assert(decltype(rotate(TwiceSphere<double>{}, 0, 1.0))::kind == SdfKind::implicit);
+static_assert(decltype(rotate(TwiceSphere<double>{}, Axis::x, 1.0))::kind == SdfKind::implicit);
 static_assert(is_sdf_v<decltype(repeat(translate(Sphere<float>{}, {}), {1, 0, 0}, {{2, 0, 0}}))>);
 
 TYPED_TEST(TransformsTest, ChecksCanFail) {
@@ -104,8 +106,8 @@ TYPED_TEST(TransformsTest, TranslateRotateScaleEquivariance) {
   // coordinate-axis rotation, EBGeometry's convention: 90 degrees about z maps x to y, so a box
   // long in x becomes long in y
   const Box<T> box{v3<T>(2, 0.5, 0.3)};
-  expect_same(rotate(box, 2, T(90)), Box<T>{v3<T>(0.5, 2, 0.3)}, cube<T>(3), tol<T>());
-  expect_same(rotate(Capsule<T>{Vec3<T>::zero(), v3<T>(1, 0, 0), T(0.2)}, 2, T(90)),
+  expect_same(rotate(box, Axis::z, T(90)), Box<T>{v3<T>(0.5, 2, 0.3)}, cube<T>(3), tol<T>());
+  expect_same(rotate(Capsule<T>{Vec3<T>::zero(), v3<T>(1, 0, 0), T(0.2)}, Axis::z, T(90)),
               Capsule<T>{Vec3<T>::zero(), v3<T>(0, 1, 0), T(0.2)}, cube<T>(3), tol<T>());
   // uniform scale: the capsule with scaled end points and radius
   expect_same(scale(cap, T(2.5)), Capsule<T>{a * T(2.5), b * T(2.5), T(1.0)}, cube<T>(5),
@@ -129,8 +131,9 @@ TYPED_TEST(TransformsTest, EikonalForExactnessPreservingTransforms) {
                        translate(tor, v3<T>(1, 2, 3)).bounds().grown(1));
   test::expect_eikonal(rotate(tor, v3<T>(1, 1, 0), T(33)),
                        rotate(tor, v3<T>(1, 1, 0), T(33)).bounds().grown(1));
-  test::expect_eikonal(rotate(box, 0, T(45)), rotate(box, 0, T(45)).bounds().grown(1));
-  test::expect_eikonal(transform(box, Mat3<T>::coordinate_axis(1, 20), v3<T>(0, 1, 0)), cube<T>(2));
+  test::expect_eikonal(rotate(box, Axis::x, T(45)), rotate(box, Axis::x, T(45)).bounds().grown(1));
+  test::expect_eikonal(transform(box, Mat3<T>::coordinate_axis(Axis::y, 20), v3<T>(0, 1, 0)),
+                       cube<T>(2));
   test::expect_eikonal(scale(tor, T(1.7)), scale(tor, T(1.7)).bounds().grown(1));
   test::expect_eikonal(reflect(box, v3<T>(1, 2, 3), T(0.5)), cube<T>(2));
   test::expect_eikonal(complement(tor), tor.bounds().grown(1));
@@ -165,7 +168,7 @@ TYPED_TEST(TransformsTest, OffsetShellElongateMirrorHaveKnownClosedForms) {
                   .contains(Aabb<T>::of(v3<T>(-0.7, -1, -0.4), v3<T>(0.7, 1, 0.4))));
   // mirror of a ball on the positive side: the union of the ball and its image (exact)
   const Sphere<T> c{v3<T>(0.9, 0.2, 0), T(0.5)};
-  const auto m = mirror(c, 0);
+  const auto m = mirror(c, Axis::x);
   for (const auto& p : test::random_points(cube<T>(2), 300)) {
     const V3 q = V3::from(p);
     const double ref = std::min(norm(q - V3{0.9, 0.2, 0}), norm(q - V3{-0.9, 0.2, 0})) - 0.5;
@@ -184,7 +187,7 @@ TYPED_TEST(TransformsTest, BoundKindsNeverOverestimate) {
   test::expect_bound(offset(ct, T(-0.1)), box);
   test::expect_bound(shell(ct, T(0.05)), box);
   test::expect_bound(elongate(ct, v3<T>(0.2, 0.1, 0.15)), box.grown(0.3));
-  test::expect_bound(mirror(ct, 1), box);
+  test::expect_bound(mirror(ct, Axis::y), box);
   test::expect_bound(mollify(ct, T(0.1)), box.grown(0.2));
   test::expect_bound(mollify(Box<T>{v3<T>(0.5, 0.6, 0.7)}, T(0.2)), box);
   // offset outside of an exact shape is exact outside: the check with exactness for a convex one
@@ -262,7 +265,72 @@ TYPED_TEST(TransformsTest, BoundsContainTheInside) {
   check(shell(cap, T(0.1)));
   check(elongate(cap, v3<T>(0.5, 0.2, 0)));
   check(reflect(cap, v3<T>(1, 1, 0), T(0.2)));
-  check(mirror(cap, 1));
+  check(mirror(cap, Axis::y));
   check(mollify(cap, T(0.1)));
   check(repeat(cap, v3<T>(2, 0, 0), {{1, 0, 0}}));
+}
+
+// A coordinate axis is an `Axis`, never a number: EBGeometry's argument order `rotate(s, 90, 0)`
+// (angle, axis) resolves to a trap whose body does not compile (tests/compile_fail checks the
+// error), so it can never yield a silently unrotated SDF.
+static_assert(!is_sdf_v<decltype(rotate(Box<double>{}, 90, 0))>);
+static_assert(!is_sdf_v<decltype(rotate(Box<double>{}, 2, 90.0))>);
+static_assert(!is_sdf_v<decltype(mirror(Box<double>{}, 0))>);
+static_assert(is_sdf_v<decltype(rotate(Box<double>{}, Axis::x, 90))>);
+
+TYPED_TEST(TransformsTest, EBGeometryRotateIsShapeAxisAngleAndNeverIdentity) {
+  using T = TypeParam;
+  // EBGeometry's `sdf.rotate(90, 0)` (90 degrees about x) maps +y to +z: a box long in y becomes
+  // long in z, which the identity would not give
+  const Box<T> box{v3<T>(0.3, 2, 0.5)};
+  const auto turned = rotate(box, Axis::x, 90);
+  expect_same(turned, Box<T>{v3<T>(0.3, 0.5, 2)}, cube<T>(3), tol<T>());
+  EXPECT_GT(std::abs(double(turned(v3<T>(0, 1.5, 0)) - box(v3<T>(0, 1.5, 0)))), 0.5);
+  // y and z as well, and the same through mirror's Axis
+  expect_same(rotate(box, Axis::y, 90), Box<T>{v3<T>(0.5, 2, 0.3)}, cube<T>(3), tol<T>());
+  expect_same(rotate(box, Axis::z, 90), Box<T>{v3<T>(2, 0.3, 0.5)}, cube<T>(3), tol<T>());
+}
+
+TYPED_TEST(TransformsTest, ArgumentsThatDescribeNoTransformGiveNaNNotIdentity) {
+  using T = TypeParam;
+  const Sphere<T> s{v3<T>(0.5, 0.2, 0.1), T(0.4)};
+  const Vec3<T> p = v3<T>(0.3, -0.2, 0.6);
+  const Vec3<T> zero = Vec3<T>::zero();
+  const T inf = std::numeric_limits<T>::infinity();
+  for (const int bad : {-1, 3, 90}) {
+    EXPECT_TRUE(std::isnan(rotate(s, static_cast<Axis>(bad), T(90))(p))) << bad;
+    EXPECT_TRUE(std::isnan(mirror(s, static_cast<Axis>(bad))(p))) << bad;
+    EXPECT_TRUE(std::isnan(mirror(s, static_cast<Axis>(bad)).bounds().lo.x)) << bad;
+  }
+  EXPECT_TRUE(std::isnan(rotate(s, zero, T(30))(p)));
+  EXPECT_TRUE(std::isnan(rotate(s, v3<T>(0, double(inf), 0), T(30))(p)));
+  EXPECT_TRUE(std::isnan(rotate(s, Quaternion<T>{0, 0, 0, 0})(p)));
+  EXPECT_TRUE(std::isnan(transform(s, Quaternion<T>{0, 0, 0, 0}, v3<T>(1, 0, 0))(p)));
+  EXPECT_TRUE(std::isnan(reflect(s, zero, T(0))(p)));
+  EXPECT_TRUE(std::isnan(reflect(s, zero, T(0)).bounds().hi.y));
+  for (const T f : {T(0), T(-1), T(-2), inf, std::numeric_limits<T>::quiet_NaN()})
+    EXPECT_TRUE(std::isnan(scale(s, f)(p))) << f;
+  // the valid neighbours of each are finite
+  EXPECT_FALSE(std::isnan(rotate(s, Axis::y, T(30))(p)));
+  EXPECT_FALSE(std::isnan(mirror(s, Axis::z)(p)));
+  EXPECT_FALSE(std::isnan(rotate(s, v3<T>(0, 0, 1e-20), T(30))(p)));
+  EXPECT_FALSE(std::isnan(reflect(s, v3<T>(0, 2, 0), T(0))(p)));
+  EXPECT_NEAR(double(scale(s, T(2))(p)), double(T(2) * s(p / T(2))), tol<T>());
+}
+
+TYPED_TEST(TransformsTest, NegativeRadiiAndZeroDirectionsGiveNaN) {
+  using T = TypeParam;
+  const Vec3<T> p = v3<T>(0.3, -0.2, 0.6), a = v3<T>(0, 0, 0), b = v3<T>(1, 0, 0);
+  EXPECT_TRUE(std::isnan(Sphere<T>{a, T(-0.5)}(p)));
+  EXPECT_TRUE(std::isnan((Capsule<T>{a, b, T(-0.1)}(p))));
+  EXPECT_TRUE(std::isnan((CappedCylinder<T>{a, b, T(-0.1)}(p))));
+  EXPECT_TRUE(std::isnan((InfiniteCylinder<T>{a, b, T(-0.1)}(p))));
+  EXPECT_TRUE(std::isnan((InfiniteCylinder<T>{a, Vec3<T>::zero(), T(0.1)}(p))));
+  EXPECT_TRUE(std::isnan((Torus<T>{a, T(1), T(-0.1)}(p))));
+  EXPECT_TRUE(std::isnan((Plane<T>{Vec3<T>::zero(), T(0)}(p))));
+  EXPECT_TRUE(std::isnan((Plane<T>::through(a, Vec3<T>::zero())(p))));
+  // zero radii are valid (a point, a segment): finite, the distance to it
+  EXPECT_NEAR(double(Sphere<T>{a, T(0)}(p)), double(norm(p)), tol<T>());
+  EXPECT_NEAR(double(Capsule<T>{a, b, T(0)}(p)), std::sqrt(0.04 + 0.36), tol<T>());
+  EXPECT_FALSE(std::isnan((Torus<T>{a, T(1), T(0)}(p))));
 }

@@ -56,6 +56,16 @@ TYPED_TEST(SignedMeshSdfTest, EverySignedModeAgreesWithPseudonormalOnWatertightM
   }
 }
 
+TYPED_TEST(SignedMeshSdfTest, OutOfRangeSignModeIsAnErrorNotUnsigned) {
+  using T = TypeParam;
+  SignOptions o;
+  o.mode = static_cast<SignMode>(9);
+  const auto r = SignedMeshSdf<T>::build(make_cube<T>(T(0.5)).value(), o);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::invalid_argument);
+  EXPECT_NE(r.error().message.find("sign mode 9"), std::string::npos) << r.error().message;
+}
+
 TYPED_TEST(SignedMeshSdfTest, ClosestCarriesTheModesSign) {
   using T = TypeParam;
   const auto soup = make_torus<T>(1, T(0.3)).value();
