@@ -10,6 +10,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <cmath>
 #include <cstdint>
@@ -663,7 +664,8 @@ PYBIND11_MODULE(_ebgeom, m) {
            "from a file.")
       .def(
           "write",
-          [](const Mesh& s, const std::string& path, bool ascii) {
+          [](const Mesh& s, const std::filesystem::path& fpath, bool ascii) {
+            const std::string path = fpath.string();
             io::WriteOptions w;
             w.encoding = ascii ? io::Encoding::ascii : io::Encoding::binary;
             auto ok = io::write_mesh(path, s.soup, w);
