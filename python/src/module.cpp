@@ -599,6 +599,23 @@ void save_grid_py(const std::string& path, const py::array& values, const std::v
         centering);
 }
 
+/// Seconds one C++ `evaluate` call takes on `points` (already contiguous in the SDF's dtype) into
+/// a preallocated buffer: the C++ side of bench/python_bench.py, timed in the same process.
+template <class T> double time_eval_as(const Sdf& s, const py::handle& points, int threads) {
+  const auto pts = as_points<T>(points);
+  const std::size_t n = std::size_t(pts.shape(0));
+  std::vector<T> out(n);
+  const ExecOptions ex = exec_of(threads);
+  const SdfImpl<T>& impl = s.impl<T>();
+  py::gil_scoped_release nogil;
+  const double t0 = cli::now_s();
+  auto ok = impl.mesh ? evaluate(*impl.mesh, point_span<T>(pts), Span<T>(out), ex)
+                      : evaluate(impl.prog, point_span<T>(pts), Span<T>(out), ex);
+  const double t1 = cli::now_s();
+  (void)ok;
+  return t1 - t0;
+}
+
 } // namespace
 
 PYBIND11_MODULE(_ebgeom, m) {
@@ -729,6 +746,13 @@ PYBIND11_MODULE(_ebgeom, m) {
            py::arg("out") = py::none())
       .def("query", &sdf_query, py::arg("points"), py::arg("threads") = 0);
 
+  m.def(
+      "_time_cpp_eval",
+      [](const Sdf& s, const py::handle& points, int threads) {
+        return s.is_double() ? time_eval_as<double>(s, points, threads)
+                             : time_eval_as<float>(s, points, threads);
+      },
+      py::arg("sdf"), py::arg("points"), py::arg("threads") = 0);
   m.def("mesh_sdf", &make_mesh_sdf, py::arg("mesh"), py::arg("sign") = "auto",
         py::arg("precision") = "float");
   m.def("compile_scene", &make_scene, py::arg("json"), py::arg("file"),
