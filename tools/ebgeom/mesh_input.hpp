@@ -74,6 +74,8 @@ template <class T> class CliMeshSdf {
     return {h.distance, h.point, h.triangle};
   }
   const TriangleMesh<T>& mesh() const noexcept { return sdf_->mesh(); }
+  /// The library's signed mesh SDF (its `closest` also reports the feature).
+  const SignedMeshSdf<T>& signed_sdf() const noexcept { return *sdf_; }
   /// The mode asked for, the mode used (never automatic) and why ("requested" unless automatic).
   SignMode requested_sign() const noexcept { return requested_; }
   SignMode sign() const noexcept { return sdf_->resolved_mode(); }
