@@ -33,7 +33,7 @@ LAYERS = {
     "octree": {"core"},
     "io": {"core", "geom", "mesh"},
     "sdf": {"core", "geom", "mesh", "bvh"},
-    "eval": {"core", "geom", "mesh", "bvh", "octree", "sdf"},
+    "eval": {"core", "geom", "mesh", "bvh", "octree", "io", "sdf"},
     "adapters": {"core", "geom", "mesh", "bvh", "octree", "io", "sdf", "eval"},
 }
 LEAVES = {"version.hpp"}  # top-level headers anyone may include, which include no ebgeom header
