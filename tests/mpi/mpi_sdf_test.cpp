@@ -242,6 +242,26 @@ TEST_P(MpiErrors, UnwritableOutputEndsEveryRankWithOneError) {
   EXPECT_EQ(list_dir(dir).size(), 0u);
 }
 
+TEST_P(MpiErrors, GridsWithNaNAreNeverWritten) {
+  // Every value is in range, but the capped cylinder's formula overflows float inside the
+  // evaluation: the serial tool refuses such a grid, and so must every rank here.
+  const int ranks = GetParam();
+  const std::string dir = test_dir();
+  std::ofstream(dir + "/s.json")
+      << R"({"type": "cylinder", "a": [0, 0, -1e17], "b": [0, 0, 1e17], "radius": 1e17})";
+  for (const char* ext : {".npy", ".pvti"}) {
+    const std::string out = dir + "/x" + ext;
+    const RunResult r = run_mpi(ranks, "sdf '" + dir + "/s.json' -o '" + out + "' --res 16");
+    EXPECT_EQ(r.code, 3) << ext << "\n" << r.err; // exit_input, as the serial tool
+    EXPECT_EQ(error_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("samples are NaN or infinite"), std::string::npos) << r.err;
+    EXPECT_FALSE(exists(out));
+  }
+  const RunResult d =
+      run_mpi(ranks, "sdf '" + dir + "/s.json' -o '" + dir + "/d.npy' --res 16 --precision double");
+  EXPECT_EQ(d.code, 0) << d.err;
+}
+
 /// A full disk (a 256 KiB tmpfs, root only; skipped otherwise): MPI-IO's short writes must end
 /// every rank with one output error, and leave no file, for each output kind.
 TEST_P(MpiErrors, FullDiskEndsEveryRankWithOneErrorAndNoFile) {

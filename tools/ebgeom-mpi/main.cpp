@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -148,6 +149,17 @@ template <class T> int run(const SdfOptions& o, const World& w) {
     }
     eval_s = cli::now_s() - s0;
   });
+  // A grid with NaN or infinite samples (values the working precision cannot carry) is never
+  // written, as in the serial tool: every rank counts its owned samples and all refuse together.
+  {
+    std::uint64_t bad = 0, total = 0;
+    for (std::size_t k = owned.lo[2]; k < owned.hi[2]; ++k)
+      for (std::size_t j = owned.lo[1]; j < owned.hi[1]; ++j)
+        for (std::size_t i = owned.lo[0]; i < owned.hi[0]; ++i)
+          bad += !std::isfinite(values[evaluated.index(i, j, k)]);
+    MPI_Allreduce(&bad, &total, 1, MPI_UINT64_T, MPI_SUM, w.comm);
+    phase(w.comm, [&] { cli::require_finite_grid(total, spec.size(), o.input); });
+  }
   const double t3 = cli::now_s();
 
   // 4. Write.

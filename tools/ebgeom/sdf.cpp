@@ -59,7 +59,7 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
       fail(exit_usage, o.output + ": writing it would overwrite the input " + o.input);
   }
   require_output_target(o.output);
-  if (!sparse && *fmt == GridFormat::raw) require_output_target(raw_sidecar_path(o.output));
+  if (fmt && *fmt == GridFormat::raw) require_output_target(raw_sidecar_path(o.output));
   if (!o.png.empty()) require_output_target(o.png);
 
   const double t0 = now_s();

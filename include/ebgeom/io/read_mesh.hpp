@@ -95,7 +95,10 @@ inline Result<FileBytes, ParseError> read_file(const std::string& path,
   if (!read_up_to(head))
     return make_parse_error(ErrorCode::io, path, got, 0, "cannot read the file's ", out.size,
                             " bytes (", got == 0 ? "no data" : std::strerror(errno), ")");
-  if (head > 0 && std::all_of(out.data.get(), out.data.get() + head, [](char c) { return c == 0; }))
+  // A large file whose first 64 KiB are zero is a blank or sparse file: refused before the rest is
+  // read. Smaller files go to the parsers, whose errors say precisely what is missing.
+  if (head == 65536 &&
+      std::all_of(out.data.get(), out.data.get() + head, [](char c) { return c == 0; }))
     return make_parse_error(ErrorCode::bad_magic, path, 0, 0, "the first ", head, " of its ",
                             out.size, " bytes are all zero: not a mesh (a blank or sparse file?)");
   if (!read_up_to(out.size))

@@ -105,9 +105,11 @@ Result<std::uint64_t> write_vdb_as(const std::string& path, const SparseGrid<T>&
     return make_error(ErrorCode::io, path, ": OpenVDB could not write the grid (", e.what(), ")");
   }
   if (auto ok = f.close(); !ok) return ok.error();
-  if (auto ok = f.commit(); !ok) return ok.error();
+  // The size of what was written, read before `commit()`: inside an OutputGroup the rename onto
+  // `path` happens only when the whole job's outputs are written.
   std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
+  const auto size = std::filesystem::file_size(f.temp_path(), ec);
+  if (auto ok = f.commit(); !ok) return ok.error();
   return std::uint64_t(ec ? 0 : size);
 }
 
