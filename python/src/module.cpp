@@ -33,6 +33,7 @@
 
 #include "common.hpp"
 #include "mesh_input.hpp"
+#include "mesh_report.hpp"
 #include "program.hpp"
 #include "scene.hpp"
 #include "sdf_job.hpp"
@@ -219,45 +220,11 @@ py::dict mesh_info(const Mesh& m) {
     py::gil_scoped_release nogil;
     r = validate(m.soup);
   }
-  const SignChoice auto_sign = choose_sign_mode(r);
-  py::dict j;
+  // The fields of `ebgeom info --json`, built by the same function.
+  nlohmann::json j;
   if (!m.path.empty()) j["input"] = m.path;
-  j["vertices"] = r.vertex_count;
-  j["faces"] = r.face_count;
-  j["triangles"] = m.soup.triangle_count();
-  j["edges"] = r.edge_count;
-  j["boundary_edges"] = r.boundary_edges.count;
-  j["holes"] = r.holes;
-  j["non_manifold_edges"] = r.non_manifold_edges.count;
-  j["non_manifold_vertices"] = r.non_manifold_vertices.count;
-  j["inconsistent_edges"] = r.inconsistent_edges.count;
-  j["degenerate_faces"] = r.degenerate_faces.count;
-  j["duplicate_faces"] = r.duplicate_faces.count;
-  j["isolated_vertices"] = r.isolated_vertices.count;
-  j["bad_index_faces"] = r.bad_index_faces.count;
-  j["short_faces"] = r.short_faces.count;
-  j["non_finite_vertices"] = r.non_finite_vertices.count;
-  j["watertight"] = r.boundary_edges.empty() && r.non_manifold_edges.empty();
-  j["consistently_oriented"] = r.inconsistent_edges.empty();
-  j["outward"] = r.signed_volume > 0;
-  j["area"] = r.area;
-  j["volume"] = r.signed_volume;
-  const Aabb<double>& b = r.bounds;
-  if (b.is_empty())
-    j["bbox"] = py::none();
-  else {
-    py::dict bb;
-    bb["lo"] = py::make_tuple(b.lo.x, b.lo.y, b.lo.z);
-    bb["hi"] = py::make_tuple(b.hi.x, b.hi.y, b.hi.z);
-    j["bbox"] = bb;
-  }
-  j["sdf_well_defined"] = r.sdf_well_defined;
-  j["verdict"] = r.verdict;
-  py::dict s;
-  s["mode"] = cli::sign_name(auto_sign.mode);
-  s["reason"] = auto_sign.reason;
-  j["auto_sign"] = s;
-  return j;
+  j.update(cli::mesh_report_json(r, m.soup.triangle_count()));
+  return py::module_::import("json").attr("loads")(j.dump()).cast<py::dict>();
 }
 
 // ---- SDF objects ------------------------------------------------------------------------------

@@ -10,6 +10,7 @@
 #include "common.hpp"
 #include "ebgeom/mesh/validate.hpp"
 #include "mesh_input.hpp"
+#include "mesh_report.hpp"
 #include "scene.hpp"
 
 namespace ebgeom::cli {
@@ -32,33 +33,7 @@ int run_info(const InfoOptions& o) {
   if (o.json) {
     Json j;
     j["input"] = o.input;
-    j["vertices"] = r.vertex_count;
-    j["faces"] = r.face_count;
-    j["triangles"] = soup.triangle_count();
-    j["edges"] = r.edge_count;
-    j["boundary_edges"] = r.boundary_edges.count;
-    j["holes"] = r.holes;
-    j["non_manifold_edges"] = r.non_manifold_edges.count;
-    j["non_manifold_vertices"] = r.non_manifold_vertices.count;
-    j["inconsistent_edges"] = r.inconsistent_edges.count;
-    j["degenerate_faces"] = r.degenerate_faces.count;
-    j["duplicate_faces"] = r.duplicate_faces.count;
-    j["isolated_vertices"] = r.isolated_vertices.count;
-    j["bad_index_faces"] = r.bad_index_faces.count;
-    j["short_faces"] = r.short_faces.count;
-    j["non_finite_vertices"] = r.non_finite_vertices.count;
-    j["watertight"] = watertight;
-    j["consistently_oriented"] = oriented;
-    j["outward"] = r.signed_volume > 0;
-    j["area"] = r.area;
-    j["volume"] = r.signed_volume;
-    if (b.is_empty())
-      j["bbox"] = nullptr;
-    else
-      j["bbox"] = {{"lo", {b.lo.x, b.lo.y, b.lo.z}}, {"hi", {b.hi.x, b.hi.y, b.hi.z}}};
-    j["sdf_well_defined"] = r.sdf_well_defined;
-    j["verdict"] = r.verdict;
-    j["auto_sign"] = {{"mode", sign_name(auto_sign.mode)}, {"reason", auto_sign.reason}};
+    j.update(mesh_report_json(r, soup.triangle_count()));
     std::printf("%s\n", j.dump(2).c_str());
     return exit_ok;
   }
