@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "ebgeom/bvh/build.hpp"
+#include "ebgeom/bvh/experimental/nearest_variants.hpp"
 #include "ebgeom/bvh/traverse.hpp"
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/io/read_mesh.hpp"
@@ -251,9 +252,10 @@ int main(int argc, char** argv) {
       [&](const Vec3<T>& p, T& b2) { bvh::nearest<true>(w, p, b2, leaf_fn(p)); });
   run("ordered (nearest child first)",
       [&](const Vec3<T>& p, T& b2) { bvh::nearest(w, p, b2, leaf_fn(p)); });
-  run("unordered", [&](const Vec3<T>& p, T& b2) { bvh::nearest_unordered(w, p, b2, leaf_fn(p)); });
+  run("unordered",
+      [&](const Vec3<T>& p, T& b2) { bvh::experimental::nearest_unordered(w, p, b2, leaf_fn(p)); });
   run("recursive (ordered)",
-      [&](const Vec3<T>& p, T& b2) { bvh::nearest_recursive(w, p, b2, leaf_fn(p)); });
+      [&](const Vec3<T>& p, T& b2) { bvh::experimental::nearest_recursive(w, p, b2, leaf_fn(p)); });
   const auto sdf = MeshSdf<T>::make(mesh).value();
   run(
       "MeshSdf (SoA blocks of 8, vector kernel)",

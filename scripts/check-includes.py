@@ -38,6 +38,13 @@ LAYERS = {
 }
 LEAVES = {"version.hpp"}  # top-level headers anyone may include, which include no ebgeom header
 UMBRELLA = "ebgeom.hpp"  # the whole library: may include anything
+# Forwarding headers left at a header's old path for one release: each holds exactly one include,
+# its new path, whatever the layers say; no library header may include an old path.
+FORWARDERS = {
+    "mesh/dcel_distance.hpp": "sdf/dcel_distance.hpp",
+    "mesh/point_in_polygon.hpp": "geom/point_in_polygon.hpp",
+    "mesh/polygon_geometry.hpp": "geom/polygon_geometry.hpp",
+}
 
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s*([<"])([^">]+)[">]')
 
@@ -69,6 +76,14 @@ def check(root):
     graph = {}
     for rel in sorted(headers):
         mod = module_of(rel)
+        if rel in FORWARDERS:
+            with open(headers[rel], encoding="utf-8", errors="replace") as fh:
+                targets = [m.group(2) for m in map(INCLUDE_RE.match, fh) if m]
+            if targets != ["ebgeom/" + FORWARDERS[rel]]:
+                errors.append("include/ebgeom/%s: a forwarding header must include exactly "
+                              "ebgeom/%s and nothing else" % (rel, FORWARDERS[rel]))
+            graph[rel] = [FORWARDERS[rel]] if FORWARDERS[rel] in headers else []
+            continue
         if mod not in LAYERS and mod not in ("*", "leaf"):
             errors.append("include/ebgeom/%s: module '%s' is not in the layer table of "
                           "scripts/check-includes.py (add it there and to docs/architecture.md)"
@@ -94,6 +109,10 @@ def check(root):
                     errors.append("%s: includes %s, which does not exist" % (where, target))
                     continue
                 graph[rel].append(trel)
+                if trel in FORWARDERS:
+                    errors.append("%s: includes the old path %s; include ebgeom/%s" %
+                                  (where, target, FORWARDERS[trel]))
+                    continue
                 tmod = module_of(trel)
                 if mod == "*" or tmod == "leaf":
                     if mod == "leaf":
@@ -146,6 +165,8 @@ def self_test():
     inc = '#include "ebgeom/%s"\n'
     clean = {
         "version.hpp": "#pragma once\n",
+        "mesh/dcel_distance.hpp": inc % "sdf/dcel_distance.hpp",
+        "sdf/dcel_distance.hpp": inc % "core/vec.hpp",
         "core/vec.hpp": "#pragma once\n#include <cmath>\n" + inc % "version.hpp",
         "core.hpp": inc % "core/vec.hpp",
         "bvh/wide_bvh.hpp": inc % "core/vec.hpp",
@@ -164,6 +185,13 @@ def self_test():
         "cycle inside a module": {"core/a.hpp": inc % "core/b.hpp", "core/b.hpp": inc % "core/a.hpp"},
         "unknown module": {"newthing/x.hpp": inc % "core/vec.hpp"},
         "leaf including": {"version.hpp": inc % "core/vec.hpp"},
+        "forwarder with a second include": {
+            "mesh/point_in_polygon.hpp": inc % "geom/point_in_polygon.hpp" + inc % "core/vec.hpp",
+            "geom/point_in_polygon.hpp": inc % "core/vec.hpp"},
+        "header including an old path": {
+            "mesh/point_in_polygon.hpp": inc % "geom/point_in_polygon.hpp",
+            "geom/point_in_polygon.hpp": inc % "core/vec.hpp",
+            "sdf/mesh_sdf.hpp": inc % "mesh/point_in_polygon.hpp"},
     }
     failures = []
     d = tree(clean)

@@ -25,10 +25,10 @@
 
 #include "ebgeom/bvh/build.hpp"
 #include "ebgeom/io/read_mesh.hpp"
-#include "ebgeom/mesh/dcel_distance.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/mesh/half_edge_mesh.hpp"
 #include "ebgeom/sdf/brute_force_dcel_sdf.hpp"
+#include "ebgeom/sdf/dcel_distance.hpp"
 #include "ebgeom/sdf/dcel_sdf.hpp"
 
 namespace {

@@ -14,5 +14,6 @@
 #include "ebgeom/core/parallel.hpp"
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/rotation.hpp"
+#include "ebgeom/core/simd.hpp"
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"

@@ -5,11 +5,8 @@
 /// Module umbrella: polygon soups, half-edge and triangle meshes, pseudonormals, procedural meshes,
 /// validation.
 
-#include "ebgeom/mesh/dcel_distance.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/mesh/half_edge_mesh.hpp"
-#include "ebgeom/mesh/point_in_polygon.hpp"
-#include "ebgeom/mesh/polygon_geometry.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 #include "ebgeom/mesh/pseudonormals.hpp"
 #include "ebgeom/mesh/soup_check.hpp"

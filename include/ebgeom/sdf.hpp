@@ -13,6 +13,7 @@
 #include "ebgeom/sdf/cached_union.hpp"
 #include "ebgeom/sdf/concepts.hpp"
 #include "ebgeom/sdf/csg.hpp"
+#include "ebgeom/sdf/dcel_distance.hpp"
 #include "ebgeom/sdf/dcel_sdf.hpp"
 #include "ebgeom/sdf/mesh_closest_point.hpp"
 #include "ebgeom/sdf/mesh_sdf.hpp"

@@ -73,6 +73,11 @@ enum class BuildMethod : std::uint8_t {
   morton,     ///< bottom-up from Morton codes (fastest build)
 };
 
+/// True when `m` is one of the listed `BuildMethod` values.
+constexpr bool is_valid(BuildMethod m) noexcept {
+  return m == BuildMethod::sah_binned || m == BuildMethod::median || m == BuildMethod::morton;
+}
+
 /// Options of `build`.
 struct BuildOptions {
   BuildMethod method = BuildMethod::sah_binned;

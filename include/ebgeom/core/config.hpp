@@ -46,6 +46,18 @@
 #define EBGEOM_EXACT_KERNEL
 #endif
 
+/// A documented precondition on a value the caller controls that has no error channel (an enum
+/// outside its listed values, passed to a `noexcept` kernel): checked in every build, never
+/// replaced by a silent default. The checked entry points (`make` functions) return an error for
+/// the same values before they reach such a kernel.
+#define EBGEOM_PRECONDITION(cond, msg)                                                             \
+  do {                                                                                             \
+    if (!(cond)) {                                                                                 \
+      std::fprintf(stderr, "ebgeom: precondition violated: %s\n", msg);                            \
+      std::abort();                                                                                \
+    }                                                                                              \
+  } while (0)
+
 /// Internal invariants only (never user data). On when EBGEOM_ENABLE_ASSERTS is defined, which our
 /// Debug, test and fuzz builds do; users get it with -DEBGEOM_ENABLE_ASSERTS.
 #if defined(EBGEOM_ENABLE_ASSERTS)

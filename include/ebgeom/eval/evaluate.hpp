@@ -2,8 +2,8 @@
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 /// \file
-/// `evaluate(sdf, points, out, ExecOptions)`: the batch form of `sdf(p)`, threaded, plus the
-/// trait that lets runtime (type-erased) SDFs take whole batches.
+/// `evaluate(sdf, points, out, ExecOptions)`: the batch form of `sdf(p)`, threaded (with the
+/// SDF's batch `eval` where it has one: `has_batch_eval_v`, sdf/concepts.hpp).
 
 #include <algorithm>
 #include <cstddef>
@@ -18,50 +18,6 @@
 #include "ebgeom/sdf/concepts.hpp"
 
 namespace ebgeom {
-
-namespace detail {
-template <class S, class = void> struct has_batch_eval : std::false_type {};
-template <class S>
-struct has_batch_eval<S, std::void_t<decltype(std::declval<const S&>().eval(
-                             std::declval<Span<const Vec3<typename S::scalar_type>>>(),
-                             std::declval<Span<typename S::scalar_type>>()))>> : std::true_type {};
-
-template <class S, class = void> struct has_bounded_query : std::false_type {};
-template <class S>
-struct has_bounded_query<S, std::void_t<decltype(std::declval<const S&>().bounded(
-                                std::declval<const Vec3<typename S::scalar_type>&>(),
-                                std::declval<typename S::scalar_type>()))>>
-    : std::is_convertible<decltype(std::declval<const S&>().bounded(
-                              std::declval<const Vec3<typename S::scalar_type>&>(),
-                              std::declval<typename S::scalar_type>())),
-                          typename S::scalar_type> {};
-
-template <class S, class = void> struct has_dynamic_kind : std::false_type {};
-template <class S>
-struct has_dynamic_kind<S, std::void_t<decltype(std::declval<const S&>().dynamic_kind())>>
-    : std::true_type {};
-} // namespace detail
-
-/// True when `S` has a batch member `void eval(Span<const Vec3<T>>, Span<T>) const` (as
-/// `AnySdf<T>` and the CLI's scene programs do). Batch evaluators then call it once per batch
-/// instead of `S::operator()` once per point.
-template <class S> inline constexpr bool has_batch_eval_v = detail::has_batch_eval<S>::value;
-
-/// True when `S` (an `exact` SDF) has a bounded query
-/// `T bounded(const Vec3<T>& p, T max_abs) const noexcept` that returns exactly `S(p)` (bit for
-/// bit) whenever |S(p)| <= max_abs, and otherwise any value v with |v| > max_abs whose sign is not
-/// trusted (`MeshSdf` has one). Grid samplers then seed each search with a neighbour's value
-/// (1-Lipschitz) and narrow-band searches with the band.
-template <class S> inline constexpr bool has_bounded_query_v = detail::has_bounded_query<S>::value;
-
-/// The kind of `sdf`: `sdf.dynamic_kind()` when `S` provides it (runtime-composed SDFs whose
-/// static `kind` must be conservative), otherwise `S::kind`.
-template <class S> constexpr SdfKind kind_of(const S& sdf) noexcept {
-  if constexpr (detail::has_dynamic_kind<S>::value)
-    return sdf.dynamic_kind();
-  else
-    return (void)sdf, S::kind;
-}
 
 /// Writes `sdf(points[i])` to `out[i]` for a contiguous batch, serially. Uses the batch member
 /// `eval` when `S` has one. Precondition: `out.size() >= points.size()`.

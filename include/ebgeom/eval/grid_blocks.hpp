@@ -39,26 +39,6 @@
 #include "ebgeom/octree/octree.hpp"
 #include "ebgeom/sdf/concepts.hpp"
 
-namespace ebgeom {
-
-namespace detail {
-template <class S, class = void> struct has_lattice_eval : std::false_type {};
-template <class S>
-struct has_lattice_eval<S, std::void_t<decltype(std::declval<const S&>().eval_lattice(
-                               std::declval<Span<const Vec3<typename S::scalar_type>>>(),
-                               std::declval<const std::array<std::size_t, 3>&>(),
-                               std::declval<Span<typename S::scalar_type>>()))>> : std::true_type {
-};
-} // namespace detail
-
-/// True when `S` has a tile evaluation `void eval_lattice(Span<const Vec3<T>> pts, const
-/// std::array<std::size_t, 3>& dims, Span<T> out) const` writing, bit for bit, `out[l] =
-/// S(pts[l])` for a block of `dims` lattice samples (x fastest). `sample_grid` then makes one call
-/// per 8^3 tile with `GridSearch::tile` (the default) in dense mode (`MeshSdf`, `SignedMeshSdf`).
-template <class S> inline constexpr bool has_lattice_eval_v = detail::has_lattice_eval<S>::value;
-
-} // namespace ebgeom
-
 namespace ebgeom::detail {
 
 /// Sample positions exactly as `GridSpec::point` computes them, plus tile counts.

@@ -15,7 +15,7 @@
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/vec.hpp"
-#include "ebgeom/mesh/polygon_geometry.hpp"
+#include "ebgeom/geom/polygon_geometry.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 #include "ebgeom/mesh/pseudonormals.hpp"
 #include "ebgeom/mesh/soup_check.hpp"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "ebgeom/core/vec.hpp"
-#include "ebgeom/mesh/polygon_geometry.hpp"
+#include "ebgeom/geom/polygon_geometry.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 
 namespace ebgeom {

@@ -17,7 +17,7 @@
 #include "ebgeom/core/error.hpp"
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/vec.hpp"
-#include "ebgeom/mesh/polygon_geometry.hpp"
+#include "ebgeom/geom/polygon_geometry.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 #include "ebgeom/mesh/pseudonormals.hpp"
 #include "ebgeom/mesh/soup_check.hpp"

@@ -17,7 +17,7 @@
 
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/vec.hpp"
-#include "ebgeom/mesh/polygon_geometry.hpp"
+#include "ebgeom/geom/polygon_geometry.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 
 namespace ebgeom {

@@ -11,10 +11,11 @@
 #include <utility>
 
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
 #include "ebgeom/core/result.hpp"
-#include "ebgeom/mesh/dcel_distance.hpp"
 #include "ebgeom/mesh/half_edge_mesh.hpp"
 #include "ebgeom/sdf/concepts.hpp"
+#include "ebgeom/sdf/dcel_distance.hpp"
 
 namespace ebgeom {
 
@@ -27,9 +28,12 @@ template <class T> class BruteForceDcelSdf {
   using scalar_type = T;
   static constexpr SdfKind kind = SdfKind::exact;
 
+  /// Precondition: `is_valid(inside_test)` (checked in every build).
   explicit BruteForceDcelSdf(HalfEdgeMesh<T> mesh,
                              InsideTest inside_test = InsideTest::crossing_number)
-      : mesh_(std::move(mesh)), bounds_(mesh_.bounds()), inside_test_(inside_test) {}
+      : mesh_(std::move(mesh)), bounds_(mesh_.bounds()), inside_test_(inside_test) {
+    EBGEOM_PRECONDITION(is_valid(inside_test), "BruteForceDcelSdf: InsideTest value out of range");
+  }
 
   /// Builds the half-edge mesh from a soup; errors as `make_half_edge_mesh`.
   static Result<BruteForceDcelSdf> build(const PolygonSoup<T>& soup,

@@ -80,9 +80,11 @@ template <class S, int K = 4> class BvhUnion {
   }
 
   /// Checked construction: an object whose bounds have a NaN coordinate is refused
-  /// (`non_finite`; a NaN box would silently prune or never be visited).
+  /// (`non_finite`; a NaN box would silently prune or never be visited), and a `BuildMethod`
+  /// value outside the enumeration (`invalid_argument`).
   static Result<BvhUnion> make(std::vector<S> objects,
                                const bvh::BuildOptions& options = leaf_options()) {
+    if (Error e = bvh::check(options); e.code != ErrorCode::ok) return e;
     for (std::size_t i = 0; i < objects.size(); ++i) {
       const Aabb<T> b = objects[i].bounds();
       for (int a = 0; a < 3; ++a)

@@ -9,11 +9,24 @@
 ///    `Aabb<T>::infinite()` for unbounded shapes such as half-spaces),
 ///  - `static constexpr SdfKind kind`.
 /// `is_sdf_v<S>` checks it (C++17 detection); with C++20 concepts, `ebgeom::Sdf` too.
+///
+/// Optional members, each detected here and nowhere else, let the evaluators take faster paths:
+///  - batch `void eval(Span<const Vec3<T>>, Span<T>) const` (`has_batch_eval_v`),
+///  - `T bounded(const Vec3<T>&, T max_abs) const` (`has_bounded_query_v`),
+///  - tile `void eval_lattice(Span<const Vec3<T>>, const std::array<std::size_t, 3>&, Span<T>)
+///    const` (`has_lattice_eval_v`),
+///  - run-time kind `SdfKind dynamic_kind() const` and prunability `bool dynamic_prunable() const`
+///    (`kind_of`, `may_prune_v`, `is_prunable`),
+///  - a free `Vec3<T> analytic_gradient(const S&, const Vec3<T>&)` found by argument-dependent
+///    lookup (`has_analytic_gradient_v`, used by `normal`).
 
+#include <array>
+#include <cstddef>
 #include <type_traits>
 #include <utility>
 
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
 
 namespace ebgeom {
@@ -71,7 +84,71 @@ template <class S>
 struct has_dynamic_prunable_member<
     S, std::void_t<decltype(bool(std::declval<const S&>().dynamic_prunable()))>> : std::true_type {
 };
+
+template <class S, class = void> struct has_batch_eval : std::false_type {};
+template <class S>
+struct has_batch_eval<S, std::void_t<decltype(std::declval<const S&>().eval(
+                             std::declval<Span<const Vec3<typename S::scalar_type>>>(),
+                             std::declval<Span<typename S::scalar_type>>()))>> : std::true_type {};
+
+template <class S, class = void> struct has_bounded_query : std::false_type {};
+template <class S>
+struct has_bounded_query<S, std::void_t<decltype(std::declval<const S&>().bounded(
+                                std::declval<const Vec3<typename S::scalar_type>&>(),
+                                std::declval<typename S::scalar_type>()))>>
+    : std::is_convertible<decltype(std::declval<const S&>().bounded(
+                              std::declval<const Vec3<typename S::scalar_type>&>(),
+                              std::declval<typename S::scalar_type>())),
+                          typename S::scalar_type> {};
+
+template <class S, class = void> struct has_lattice_eval : std::false_type {};
+template <class S>
+struct has_lattice_eval<S, std::void_t<decltype(std::declval<const S&>().eval_lattice(
+                               std::declval<Span<const Vec3<typename S::scalar_type>>>(),
+                               std::declval<const std::array<std::size_t, 3>&>(),
+                               std::declval<Span<typename S::scalar_type>>()))>> : std::true_type {
+};
+
+// `analytic_gradient` is found by argument-dependent lookup at instantiation (the overloads for
+// the shapes are in sdf/normal.hpp).
+template <class S, class = void> struct has_analytic_gradient : std::false_type {};
+template <class S>
+struct has_analytic_gradient<
+    S, std::void_t<decltype(analytic_gradient(std::declval<const S&>(),
+                                              std::declval<const Vec3<sdf_scalar_t<S>>&>()))>>
+    : std::true_type {};
 } // namespace detail
+
+/// True when `S` has a batch member `void eval(Span<const Vec3<T>>, Span<T>) const` (as
+/// `AnySdf<T>` and `CachedUnion` do). Batch evaluators then call it once per batch instead of
+/// `S::operator()` once per point.
+template <class S> inline constexpr bool has_batch_eval_v = detail::has_batch_eval<S>::value;
+
+/// True when `S` (an `exact` SDF) has a bounded query
+/// `T bounded(const Vec3<T>& p, T max_abs) const noexcept` that returns exactly `S(p)` (bit for
+/// bit) whenever |S(p)| <= max_abs, and otherwise any value v with |v| > max_abs whose sign is not
+/// trusted (`MeshSdf` has one). Grid samplers then seed each search with a neighbour's value
+/// (1-Lipschitz) and narrow-band searches with the band.
+template <class S> inline constexpr bool has_bounded_query_v = detail::has_bounded_query<S>::value;
+
+/// True when `S` has a tile evaluation `void eval_lattice(Span<const Vec3<T>> pts, const
+/// std::array<std::size_t, 3>& dims, Span<T> out) const` writing, bit for bit, `out[l] =
+/// S(pts[l])` for a tile of `dims` lattice samples (x fastest). `sample_grid` then makes one call
+/// per 8^3 tile with `GridSearch::tile` (the default) in dense mode (`MeshSdf`, `SignedMeshSdf`).
+template <class S> inline constexpr bool has_lattice_eval_v = detail::has_lattice_eval<S>::value;
+
+/// True when `analytic_gradient(s, p)` exists for `S`.
+template <class S>
+inline constexpr bool has_analytic_gradient_v = detail::has_analytic_gradient<S>::value;
+
+/// The kind of `sdf`: `sdf.dynamic_kind()` when `S` provides it (runtime-composed SDFs whose
+/// static `kind` must be conservative), otherwise `S::kind`.
+template <class S> constexpr SdfKind kind_of(const S& sdf) noexcept {
+  if constexpr (detail::has_dynamic_kind_member<S>::value)
+    return sdf.dynamic_kind();
+  else
+    return (void)sdf, S::kind;
+}
 
 /// True when a union may prune some objects of type `S`: statically (`prunable_in_union<S>`) or,
 /// for run-time composed types that report their own kind (`dynamic_kind()`, e.g. `AnySdf`,

@@ -112,19 +112,6 @@ template <class T> Vec3<T> analytic_gradient(const Torus<T>& s, const Vec3<T>& p
   return norm2(d) > T(0) ? normalized(d) : Vec3<T>::unit(2);
 }
 
-namespace detail {
-template <class S, class = void> struct has_analytic_gradient : std::false_type {};
-template <class S>
-struct has_analytic_gradient<
-    S, std::void_t<decltype(analytic_gradient(std::declval<const S&>(),
-                                              std::declval<const Vec3<sdf_scalar_t<S>>&>()))>>
-    : std::true_type {};
-} // namespace detail
-
-/// True when `analytic_gradient(s, p)` exists for `S`.
-template <class S>
-inline constexpr bool has_analytic_gradient_v = detail::has_analytic_gradient<S>::value;
-
 /// Outward unit normal of `s` at `p`: the analytic gradient when `S` has one, otherwise central
 /// differences with step `h`.
 template <class S>

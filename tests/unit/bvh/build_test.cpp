@@ -378,3 +378,18 @@ TEST(Refit, BoxesFollowMovedPrimitives) {
   for (const auto& b : boxes) all.extend(b);
   EXPECT_EQ(w.box, all);
 }
+
+// A `BuildMethod` value outside the enumeration: `check` reports it, and `build` stops with a
+// message in every build instead of silently building with SAH.
+TEST(BuildDeathTest, OutOfRangeMethodIsLoud) {
+  const auto boxes = random_boxes<double>(50);
+  const auto cent = centers(boxes);
+  BuildOptions o;
+  EXPECT_EQ(check(o).code, ErrorCode::ok);
+  o.method = static_cast<BuildMethod>(7);
+  EXPECT_FALSE(is_valid(o.method));
+  EXPECT_EQ(check(o).code, ErrorCode::invalid_argument);
+  EXPECT_NE(check(o).message.find("BuildMethod value 7"), std::string::npos);
+  EXPECT_DEATH((void)build(Span<const Aabb<double>>(boxes), Span<const Vec3<double>>(cent), o),
+               "BuildMethod value out of range");
+}

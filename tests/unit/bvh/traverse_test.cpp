@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "ebgeom/bvh/experimental/nearest_variants.hpp"
 #include "ebgeom/bvh/point_cloud.hpp"
 #include "test_support.hpp"
 
@@ -49,8 +50,8 @@ template <class T, int K> void nearest_variants_match(BuildMethod m) {
     };
     run([](auto&&... a) { nearest(a...); });
     run([](auto&&... a) { nearest<true>(a...); });
-    run([](auto&&... a) { nearest_unordered(a...); });
-    run([](auto&&... a) { nearest_recursive(a...); });
+    run([](auto&&... a) { experimental::nearest_unordered(a...); });
+    run([](auto&&... a) { experimental::nearest_recursive(a...); });
   }
 }
 } // namespace
@@ -212,7 +213,7 @@ template <class T, int K> void order_children_matches_a_sort(std::mt19937_64& rn
     for (int k = 0; k < K; ++k) d2[k] = pool[pick(rng)]; // ties, zeros and empty slots
     const T lim = round % 3 == 0 ? std::numeric_limits<T>::infinity() : T(1.5);
     std::uint64_t key[K];
-    const int m = detail::order_children<T, K>(d2, lim, key);
+    const int m = bvh::detail::order_children<T, K>(d2, lim, key);
     std::vector<std::pair<T, int>> want;
     for (int k = 0; k < K; ++k)
       if (d2[k] < lim) want.push_back({d2[k], k});

@@ -10,6 +10,9 @@
 #include "ebgeom/bvh/traverse.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/sdf/brute_force_dcel_sdf.hpp"
+#include "ebgeom/sdf/bvh_union.hpp"
+#include "ebgeom/sdf/mesh_sdf.hpp"
+#include "ebgeom/sdf/shapes.hpp"
 #include "test_support.hpp"
 
 using namespace ebgeom;
@@ -84,4 +87,27 @@ TYPED_TEST(DcelSdfTest, RejectsBadInput) {
   const auto r = DcelSdf<T>::build(soup);
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, ErrorCode::non_finite);
+}
+
+// Enumeration values outside their lists are refused with an error, never replaced by a default
+// method (the DCEL SDF, the triangle-mesh SDF and the BVH union share `bvh::check`).
+TEST(DcelSdfOptions, OutOfRangeEnumValuesAreErrors) {
+  const auto soup = make_cube<double>().value();
+  EXPECT_TRUE(DcelSdf<double>::build(soup).has_value());
+  const auto bad_test = DcelSdf<double>::build(soup, static_cast<InsideTest>(9));
+  ASSERT_FALSE(bad_test.has_value());
+  EXPECT_EQ(bad_test.error().code, ErrorCode::invalid_argument);
+  EXPECT_NE(bad_test.error().message.find("InsideTest value 9"), std::string::npos);
+  bvh::BuildOptions o;
+  o.method = static_cast<bvh::BuildMethod>(5);
+  const auto bad_method = DcelSdf<double>::build(soup, InsideTest::crossing_number, o);
+  ASSERT_FALSE(bad_method.has_value());
+  EXPECT_EQ(bad_method.error().code, ErrorCode::invalid_argument);
+  o.max_leaf_size = MeshSdf<double>::default_build_options().max_leaf_size;
+  const auto mesh_sdf = MeshSdf<double>::build(soup, o);
+  ASSERT_FALSE(mesh_sdf.has_value());
+  EXPECT_EQ(mesh_sdf.error().code, ErrorCode::invalid_argument);
+  EXPECT_NE(mesh_sdf.error().message.find("BuildMethod value 5"), std::string::npos);
+  EXPECT_EQ(BvhUnion<Sphere<double>>::make({Sphere<double>{}}, o).error().code,
+            ErrorCode::invalid_argument);
 }

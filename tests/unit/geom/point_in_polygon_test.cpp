@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-#include "ebgeom/mesh/point_in_polygon.hpp"
+#include "ebgeom/geom/point_in_polygon.hpp"
 
 #include <gtest/gtest.h>
 
@@ -88,4 +88,15 @@ TYPED_TEST(PointInPolygonTest, AllThreeAgreeOnRandomStarPolygons) {
   }
   EXPECT_GT(inside, 1000);
   EXPECT_GT(outside, 1000);
+}
+
+// An `InsideTest` value outside the enumeration is a precondition violation: it stops the program
+// with a message in every build instead of silently running the crossing test.
+TEST(PointInPolygonDeathTest, OutOfRangeMethodIsLoud) {
+  const std::vector<Vec2<double>> sq = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  auto c = [&](std::size_t i) { return sq[i]; };
+  EXPECT_TRUE(is_valid(InsideTest::subtended_angle));
+  EXPECT_FALSE(is_valid(static_cast<InsideTest>(3)));
+  EXPECT_DEATH((void)point_in_polygon(Vec2<double>{0.5, 0.5}, 4, c, static_cast<InsideTest>(3)),
+               "InsideTest value out of range");
 }

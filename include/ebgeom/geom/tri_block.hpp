@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
+#pragma once
+/// \file
+/// `TriBlock<T, W>`: W triangles stored as structure of arrays, and the vector forms of the
+/// triangle kernel over a block: squared distances (`block_distance2`, the same operations as
+/// `closest_point_triangle` lane by lane, so equal bit for bit), the lanes that can lower a search
+/// bound (`block_min`) and supporting planes (`block_planes`). The leaves of `MeshSdf`'s BVH are
+/// blocks.
+///
+/// Caveat: compilers may contract a*b+c into fused multiply-adds differently in vector and scalar
+/// code when FMA instructions are enabled; the kernels here carry `EBGEOM_VECTOR_KERNEL`, which
+/// turns contraction off for GCC (Clang contracts the same way in both).
+
+#include <cmath>
+#include <limits>
+
+#include "ebgeom/core/config.hpp"
+#include "ebgeom/core/simd.hpp"
+#include "ebgeom/core/vec.hpp"
+
+namespace ebgeom {
+/// W triangles, structure of arrays: 9·W scalars (W = 8 float: 288 B; W = 4 double: 288 B).
+template <class T, int W> struct TriBlock {
+  T ax[W], ay[W], az[W], bx[W], by[W], bz[W], cx[W], cy[W], cz[W];
+
+  void set(int lane, const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) noexcept {
+    ax[lane] = a.x, ay[lane] = a.y, az[lane] = a.z;
+    bx[lane] = b.x, by[lane] = b.y, bz[lane] = b.z;
+    cx[lane] = c.x, cy[lane] = c.y, cz[lane] = c.z;
+  }
+};
+
+/// Default block width: 16 floats or 8 doubles (one 512-bit register), whatever the instruction
+/// set a translation unit is compiled for. A type's layout must not follow compile flags: two
+/// translation units built with different `-m` flags share `MeshSdf<T>` (and any user struct that
+/// holds one), and a width that changed with the flags would give them different layouts under
+/// one name, which links cleanly and reads garbage. Narrower code paths loop over the lanes
+/// (docs/performance.md "Block width" has the measurements).
+template <class T> inline constexpr int default_block_width = sizeof(T) == 4 ? 16 : 8;
+
+/// Squared distance from `p` to each triangle of a block. Performs exactly the operations of
+/// `closest_point_triangle` per lane (same order, same selects), so `d2[l]` equals its
+/// `distance2` bit for bit; divisions are computed unconditionally with a safe divisor so the
+/// loop has no branch and vectorises (checked with -fopt-info-vec: 8 floats per AVX2 register at
+/// -O2 and -O3, 4 with SSE2).
+///
+/// `detail::block_distance2_inline` is the kernel itself, always inlined, for callers that carry
+/// the same `EBGEOM_VECTOR_KERNEL` options (`block_min` keeps the distances in registers);
+/// inlined anywhere else it would take that caller's options (FP contraction included).
+namespace detail {
+template <class T, int W>
+EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE void
+block_distance2_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T (&out)[W]) noexcept {
+  T res[W]; // a local result array: no aliasing with `t`, so no runtime alias check is needed
+  for (int l = 0; l < W; ++l) {
+    const T ax = t.ax[l], ay = t.ay[l], az = t.az[l];
+    const T bx = t.bx[l], by = t.by[l], bz = t.bz[l];
+    const T cx = t.cx[l], cy = t.cy[l], cz = t.cz[l];
+    const T abx = bx - ax, aby = by - ay, abz = bz - az;
+    const T bcx = cx - bx, bcy = cy - by, bcz = cz - bz;
+    const T cax = ax - cx, cay = ay - cy, caz = az - cz;
+    const T apx = p.x - ax, apy = p.y - ay, apz = p.z - az;
+    const T bpx = p.x - bx, bpy = p.y - by, bpz = p.z - bz;
+    const T cpx = p.x - cx, cpy = p.y - cy, cpz = p.z - cz;
+    const T acx = cx - ax, acy = cy - ay, acz = cz - az;
+    // n = cross(ab, c - a)
+    const T nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+    const T nn = nx * nx + ny * ny + nz * nz;
+
+    // Edge 0: a -> b
+    const T ee0 = abx * abx + aby * aby + abz * abz;
+    const T num0 = apx * abx + apy * aby + apz * abz;
+    const T r0 = num0 / (ee0 > T(0) ? ee0 : T(1));
+    const T t0 = num0 <= T(0) ? T(0) : (num0 >= ee0 ? T(1) : r0);
+    const bool e0 = t0 >= T(1);
+    const T q0x = e0 ? bx : ax + abx * t0, q0y = e0 ? by : ay + aby * t0,
+            q0z = e0 ? bz : az + abz * t0;
+    const T d0x = p.x - q0x, d0y = p.y - q0y, d0z = p.z - q0z;
+    const T d0 = d0x * d0x + d0y * d0y + d0z * d0z;
+    // Edge 1: b -> c
+    const T ee1 = bcx * bcx + bcy * bcy + bcz * bcz;
+    const T num1 = bpx * bcx + bpy * bcy + bpz * bcz;
+    const T r1 = num1 / (ee1 > T(0) ? ee1 : T(1));
+    const T t1 = num1 <= T(0) ? T(0) : (num1 >= ee1 ? T(1) : r1);
+    const bool e1 = t1 >= T(1);
+    const T q1x = e1 ? cx : bx + bcx * t1, q1y = e1 ? cy : by + bcy * t1,
+            q1z = e1 ? cz : bz + bcz * t1;
+    const T d1x = p.x - q1x, d1y = p.y - q1y, d1z = p.z - q1z;
+    const T d1 = d1x * d1x + d1y * d1y + d1z * d1z;
+    // Edge 2: c -> a
+    const T ee2 = cax * cax + cay * cay + caz * caz;
+    const T num2 = cpx * cax + cpy * cay + cpz * caz;
+    const T r2 = num2 / (ee2 > T(0) ? ee2 : T(1));
+    const T t2 = num2 <= T(0) ? T(0) : (num2 >= ee2 ? T(1) : r2);
+    const bool e2 = t2 >= T(1);
+    const T q2x = e2 ? ax : cx + cax * t2, q2y = e2 ? ay : cy + cay * t2,
+            q2z = e2 ? az : cz + caz * t2;
+    const T d2x = p.x - q2x, d2y = p.y - q2y, d2z = p.z - q2z;
+    const T d2 = d2x * d2x + d2y * d2y + d2z * d2z;
+
+    T m = d0;
+    m = d1 < m ? d1 : m;
+    m = d2 < m ? d2 : m;
+
+    // Face region: w_k = n · (edge_k x (p - start_k))
+    const T w0 =
+        nx * (aby * apz - abz * apy) + ny * (abz * apx - abx * apz) + nz * (abx * apy - aby * apx);
+    const T w1 =
+        nx * (bcy * bpz - bcz * bpy) + ny * (bcz * bpx - bcx * bpz) + nz * (bcx * bpy - bcy * bpx);
+    const T w2 =
+        nx * (cay * cpz - caz * cpy) + ny * (caz * cpx - cax * cpz) + nz * (cax * cpy - cay * cpx);
+    const T h = nx * apx + ny * apy + nz * apz;
+    const T fd2 = h * h / (nn > T(0) ? nn : T(1));
+    // `&`, not `&&`: no short circuit, so the loop has no control flow and vectorises.
+    const bool inside = (nn > T(0)) & (w0 >= T(0)) & (w1 >= T(0)) & (w2 >= T(0)) & (fd2 <= m);
+    res[l] = inside ? fd2 : m;
+  }
+  for (int l = 0; l < W; ++l) out[l] = res[l];
+}
+} // namespace detail
+
+template <class T, int W>
+EBGEOM_VECTOR_KERNEL inline void block_distance2(const TriBlock<T, W>& t, const Vec3<T>& p,
+                                                 T (&out)[W]) noexcept {
+  detail::block_distance2_inline(t, p, out);
+}
+
+/// The lanes of a block that can lower a search bound: `lane_min` of `block_distance2(t, p)` when
+/// some lane is at squared distance <= `b2`, else `mask == 0` (most blocks a search scans; one
+/// vector compare decides it). One out-of-line call.
+template <class T, int W>
+EBGEOM_VECTOR_KERNEL inline LaneMin<T, W> block_min(const TriBlock<T, W>& t, const Vec3<T>& p,
+                                                    T b2) noexcept {
+  T d2[W];
+  detail::block_distance2_inline(t, p, d2);
+  if (detail::lane_mask<detail::LaneCmp::le>(d2, b2) == 0) return {b2, 0};
+  return lane_min<T, W>(d2);
+}
+
+/// Supporting planes of a block's triangles seen from `p`: for each lane, the unit normal `n` of
+/// the plane through the triangle's closest point `c` to `p`, perpendicular to `p - c`, and `off
+/// = n · c`. The triangle (convex) lies in the half-space n · x <= off, so `n · x - off` is a lower
+/// bound on the distance from any point x to it (distance to a convex set is convex). Lanes with
+/// `p` on the triangle get n = 0 and off = -inf... no bound (`n · x - off = -inf`). Approximate
+/// (callers add margins); same case analysis as `block_distance2`.
+template <class T, int W>
+EBGEOM_VECTOR_KERNEL inline void block_planes(const TriBlock<T, W>& t, const Vec3<T>& p,
+                                              T (&onx)[W], T (&ony)[W], T (&onz)[W],
+                                              T (&ooff)[W]) noexcept {
+  T rx[W], ry[W], rz[W], ro[W];
+  for (int l = 0; l < W; ++l) {
+    const T ax = t.ax[l], ay = t.ay[l], az = t.az[l];
+    const T bx = t.bx[l], by = t.by[l], bz = t.bz[l];
+    const T cx = t.cx[l], cy = t.cy[l], cz = t.cz[l];
+    const T abx = bx - ax, aby = by - ay, abz = bz - az;
+    const T bcx = cx - bx, bcy = cy - by, bcz = cz - bz;
+    const T cax = ax - cx, cay = ay - cy, caz = az - cz;
+    const T apx = p.x - ax, apy = p.y - ay, apz = p.z - az;
+    const T bpx = p.x - bx, bpy = p.y - by, bpz = p.z - bz;
+    const T cpx = p.x - cx, cpy = p.y - cy, cpz = p.z - cz;
+    const T acx = cx - ax, acy = cy - ay, acz = cz - az;
+    const T nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+    const T nn = nx * nx + ny * ny + nz * nz;
+    auto edge = [&](T sx, T sy, T sz, T ex, T ey, T ez, T px, T py, T pz, T& qx, T& qy, T& qz) {
+      const T ee = ex * ex + ey * ey + ez * ez;
+      const T num = px * ex + py * ey + pz * ez;
+      const T r = num / (ee > T(0) ? ee : T(1));
+      const T u = num <= T(0) ? T(0) : (num >= ee ? T(1) : r);
+      qx = sx + ex * u, qy = sy + ey * u, qz = sz + ez * u;
+      const T dx = p.x - qx, dy = p.y - qy, dz = p.z - qz;
+      return dx * dx + dy * dy + dz * dz;
+    };
+    T q0x, q0y, q0z, q1x, q1y, q1z, q2x, q2y, q2z;
+    const T d0 = edge(ax, ay, az, abx, aby, abz, apx, apy, apz, q0x, q0y, q0z);
+    const T d1 = edge(bx, by, bz, bcx, bcy, bcz, bpx, bpy, bpz, q1x, q1y, q1z);
+    const T d2 = edge(cx, cy, cz, cax, cay, caz, cpx, cpy, cpz, q2x, q2y, q2z);
+    T m = d0, qx = q0x, qy = q0y, qz = q0z;
+    const bool s1 = d1 < m;
+    m = s1 ? d1 : m, qx = s1 ? q1x : qx, qy = s1 ? q1y : qy, qz = s1 ? q1z : qz;
+    const bool s2 = d2 < m;
+    m = s2 ? d2 : m, qx = s2 ? q2x : qx, qy = s2 ? q2y : qy, qz = s2 ? q2z : qz;
+    const T w0 =
+        nx * (aby * apz - abz * apy) + ny * (abz * apx - abx * apz) + nz * (abx * apy - aby * apx);
+    const T w1 =
+        nx * (bcy * bpz - bcz * bpy) + ny * (bcz * bpx - bcx * bpz) + nz * (bcx * bpy - bcy * bpx);
+    const T w2 =
+        nx * (cay * cpz - caz * cpy) + ny * (caz * cpx - cax * cpz) + nz * (cax * cpy - cay * cpx);
+    const T h = nx * apx + ny * apy + nz * apz;
+    const T hn = h / (nn > T(0) ? nn : T(1));
+    const T fd2 = h * hn;
+    const bool inside = (nn > T(0)) & (w0 >= T(0)) & (w1 >= T(0)) & (w2 >= T(0)) & (fd2 <= m);
+    qx = inside ? p.x - nx * hn : qx, qy = inside ? p.y - ny * hn : qy;
+    qz = inside ? p.z - nz * hn : qz;
+    const T gx = p.x - qx, gy = p.y - qy, gz = p.z - qz;
+    const T g2 = gx * gx + gy * gy + gz * gz;
+    const T inv = g2 > T(0) ? T(1) / std::sqrt(g2) : T(0);
+    rx[l] = gx * inv, ry[l] = gy * inv, rz[l] = gz * inv;
+    ro[l] = g2 > T(0) ? rx[l] * qx + ry[l] * qy + rz[l] * qz : std::numeric_limits<T>::infinity();
+  }
+  for (int l = 0; l < W; ++l) onx[l] = rx[l], ony[l] = ry[l], onz[l] = rz[l], ooff[l] = ro[l];
+}
+
+} // namespace ebgeom

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
+#pragma once
+/// \file
+/// The nearest-triangle search of `MeshSdf` (`sdf/mesh_sdf.hpp`): a branch-and-bound search of a
+/// `WideBvh` whose leaves are runs of `TriBlock`s (a leaf is (first block, triangle count)), each
+/// block scanned with `block_min`. Shared by the per-point queries and tile evaluation
+/// (`sdf/mesh_tile_eval.hpp`).
+
+#include <cstdint>
+
+#include "ebgeom/bvh/simd_nodes.hpp" // <immintrin.h> where the target has SSE2 / AVX
+#include "ebgeom/bvh/traverse.hpp"
+#include "ebgeom/bvh/wide_bvh.hpp"
+#include "ebgeom/core/config.hpp"
+#include "ebgeom/core/simd.hpp"
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/geom/tri_block.hpp"
+
+namespace ebgeom::detail {
+
+/// A view of a blocked BVH: the tree, its blocks, the triangle id of each block lane (a slot) and
+/// the absolute pruning slack. Holds pointers only; the owner (`MeshSdf`) keeps the arrays alive.
+template <class T, int K, int W> struct BlockSearch {
+  const bvh::WideBvh<T, K>* bvh;
+  const TriBlock<T, W>* blocks;
+  const std::uint32_t* tri;
+  T slack;
+
+  /// Nearest triangle slot (block lane) by squared distance; `best2` is the initial bound.
+  void nearest_slot(const Vec3<T>& p, T& best2, std::uint32_t& best) const noexcept {
+    bvh::nearest<true>(
+        *bvh, p, best2,
+        [&](std::uint32_t first_block, std::uint32_t count, T& b2) noexcept {
+          scan_blocks(first_block, count, p, b2, best);
+        },
+        slack);
+  }
+
+  /// Scans blocks [first, first + ceil(count / W)) at `p`, lowering `b2`/`best` (ties: lowest
+  /// triangle index, as the brute force).
+  EBGEOM_FORCE_INLINE void scan_blocks(std::uint32_t first_block, std::uint32_t count,
+                                       const Vec3<T>& p, T& b2,
+                                       std::uint32_t& best) const noexcept {
+    const std::uint32_t nb = (count + std::uint32_t(W) - 1) / std::uint32_t(W);
+    for (std::uint32_t i = 0; i < nb; ++i) {
+      const LaneMin<T, W> lm = block_min(blocks[first_block + i], p, b2);
+      // No lane can win, or only tie with no best yet (as the brute force, which keeps the first
+      // triangle strictly below the initial bound).
+      if (lm.mask == 0 || !(lm.min < b2 || best != bvh::ChildRef::none)) continue;
+      // Lanes of a leaf hold ascending triangle ids (`pack_blocks`): the lowest minimal lane has
+      // the lowest id among this block's ties.
+      const std::uint32_t slot =
+          (first_block + i) * std::uint32_t(W) + std::uint32_t(detail::lowest_bit(lm.mask));
+      if (lm.min < b2 || tri[slot] < tri[best]) {
+        b2 = lm.min;
+        best = slot;
+      }
+    }
+  }
+};
+
+} // namespace ebgeom::detail

@@ -1,0 +1,305 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
+#pragma once
+/// \file
+/// Tile evaluation of `MeshSdf` (`MeshSdf::eval_lattice`): the nearest triangle slot of every
+/// sample of a tile of lattice samples (an 8^3 tile of a grid), from one BVH search near the
+/// tile's centre and a list of candidate leaves shared by the samples. The slots are exactly those
+/// of the per-point search (`BlockSearch::nearest_slot`); see `MeshSdf::eval_lattice` for why.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "ebgeom/bvh/traverse.hpp"
+#include "ebgeom/bvh/wide_bvh.hpp"
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
+#include "ebgeom/core/vec.hpp"
+#include "ebgeom/geom/tri_block.hpp"
+#include "ebgeom/sdf/mesh_block_search.hpp"
+
+namespace ebgeom {
+
+/// Squared distances from `p` to `n` boxes stored as structure of arrays (`lo_x[i]`, ...).
+template <class T>
+EBGEOM_VECTOR_KERNEL inline void
+boxes_distance2(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,
+                const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx,
+                const T* EBGEOM_RESTRICT hy, const T* EBGEOM_RESTRICT hz, const Vec3<T>& p,
+                T* EBGEOM_RESTRICT out) noexcept {
+  const T px = p.x, py = p.y, pz = p.z;
+  // Ternaries, not std::max: the kernel's optimisation attribute keeps std::max from inlining.
+  for (std::size_t i = 0; i < n; ++i) {
+    T ax = lx[i] - px, bx = px - hx[i], ay = ly[i] - py, by = py - hy[i], az = lz[i] - pz,
+      bz = pz - hz[i];
+    ax = ax < bx ? bx : ax, ay = ay < by ? by : ay, az = az < bz ? bz : az;
+    ax = ax < T(0) ? T(0) : ax, ay = ay < T(0) ? T(0) : ay, az = az < T(0) ? T(0) : az;
+    out[i] = ax * ax + ay * ay + az * az;
+  }
+}
+
+namespace detail {
+
+/// Nearest slots of the samples of a tile (see the file comment) over a `BlockSearch`, with the
+/// absolute error bound of supporting planes `plane_margin` (`MeshSdf::plane_margin`).
+template <class T, int K, int W> class MeshTileEval {
+ public:
+  MeshTileEval(const BlockSearch<T, K, W>& s, T plane_margin) noexcept
+      : s_(s), plane_margin_(plane_margin) {}
+
+  /// The nearest slot of each of the `dims[0] * dims[1] * dims[2]` finite samples `pts` (x
+  /// fastest), equal to `BlockSearch::nearest_slot` from an infinite bound. Allocates
+  /// O(candidate leaves) scratch; thread-safe.
+  std::vector<std::uint32_t> nearest_slots(const Vec3<T>* pts,
+                                           const std::array<std::size_t, 3>& dims) const {
+    const std::size_t n = dims[0] * dims[1] * dims[2];
+    LatticeJob job{pts, dims, std::vector<std::uint32_t>(n, bvh::ChildRef::none),
+                   {},  {},   bvh::ChildRef::none};
+    job.d2.resize(64);
+    solve_lattice(job, {{0, 0, 0}}, dims, nullptr, 0);
+    return std::move(job.slot);
+  }
+
+ private:
+  /// Candidate leaves of a tile (or part of one), structure of arrays (boxes padded with empty ones
+  /// to a multiple of 16 so the box-distance loop has no remainder).
+  struct LeafList {
+    // Boxes, then per leaf the supporting planes of its first block's triangles (`block_planes`,
+    // W lanes per leaf; `planes[i]` false: none yet).
+    std::vector<T> lo_x, lo_y, lo_z, hi_x, hi_y, hi_z, pnx, pny, pnz, poff;
+    std::vector<std::uint32_t> first, count, root;
+    std::vector<std::uint8_t> planes;
+    std::size_t size() const noexcept { return first.size(); }
+    void clear() noexcept {
+      for (auto* v : {&lo_x, &lo_y, &lo_z, &hi_x, &hi_y, &hi_z, &pnx, &pny, &pnz, &poff})
+        v->clear();
+      first.clear();
+      count.clear();
+      root.clear();
+      planes.clear();
+    }
+    void add(const Aabb<T>& b, std::uint32_t f, std::uint32_t c) {
+      lo_x.push_back(b.lo.x), lo_y.push_back(b.lo.y), lo_z.push_back(b.lo.z);
+      hi_x.push_back(b.hi.x), hi_y.push_back(b.hi.y), hi_z.push_back(b.hi.z);
+      root.push_back(std::uint32_t(first.size()));
+      first.push_back(f), count.push_back(c);
+      planes.push_back(0);
+      for (int l = 0; l < W; ++l)
+        pnx.push_back(0), pny.push_back(0), pnz.push_back(0), poff.push_back(0);
+    }
+    void add_from(const LeafList& o, std::size_t i) {
+      lo_x.push_back(o.lo_x[i]), lo_y.push_back(o.lo_y[i]), lo_z.push_back(o.lo_z[i]);
+      hi_x.push_back(o.hi_x[i]), hi_y.push_back(o.hi_y[i]), hi_z.push_back(o.hi_z[i]);
+      first.push_back(o.first[i]), count.push_back(o.count[i]), root.push_back(o.root[i]);
+    }
+    void pad() {
+      const T inf = std::numeric_limits<T>::infinity();
+      while (lo_x.size() % 16) {
+        lo_x.push_back(inf), lo_y.push_back(inf), lo_z.push_back(inf);
+        hi_x.push_back(-inf), hi_y.push_back(-inf), hi_z.push_back(-inf);
+      }
+    }
+  };
+
+  struct LatticeJob {
+    const Vec3<T>* pts;
+    std::array<std::size_t, 3> dims;
+    std::vector<std::uint32_t> slot; ///< nearest slot per sample (none = not searched yet)
+    LeafList lists[8];               ///< one per recursion level
+    std::vector<T> d2;               ///< box distances scratch
+    std::uint32_t last;              ///< nearest slot of the last sample searched
+  };
+
+  /// Squared distance between two boxes (0 when they overlap). For p in `b`, never above
+  /// `a.distance2(p)` in floating point (each step is monotone).
+  static T box_box_distance2(const Aabb<T>& a, const Aabb<T>& b) noexcept {
+    const T dx = std::max(std::max(a.lo.x - b.hi.x, b.lo.x - a.hi.x), T(0));
+    const T dy = std::max(std::max(a.lo.y - b.hi.y, b.lo.y - a.hi.y), T(0));
+    const T dz = std::max(std::max(a.lo.z - b.hi.z, b.lo.z - a.hi.z), T(0));
+    return dx * dx + dy * dy + dz * dz;
+  }
+
+  /// Leaves whose box is within squared distance `lim2` of `box`, nearest to `c` first.
+  void collect_leaves(const Aabb<T>& box, T lim2, const Vec3<T>& c, LeafList& out) const {
+    struct Item {
+      T key;
+      Aabb<T> b;
+      bvh::ChildRef r;
+    };
+    std::vector<Item> items;
+    if (s_.bvh->root.is_leaf()) {
+      items.push_back({T(0), s_.bvh->box, s_.bvh->root});
+    } else if (!s_.bvh->root.is_empty()) {
+      bvh::FixedStack<std::uint32_t, bvh::WideBvh<T, K>::stack_capacity> todo;
+      todo.push(s_.bvh->root.index);
+      while (!todo.empty()) {
+        const auto& nd = s_.bvh->nodes[todo.pop()];
+        for (int k = 0; k < K; ++k) {
+          const bvh::ChildRef r = nd.child[k];
+          if (r.is_empty()) continue;
+          const Aabb<T> b = nd.child_box(k);
+          if (!(box_box_distance2(b, box) < lim2)) continue;
+          if (r.is_leaf())
+            items.push_back({b.distance2(c), b, r});
+          else
+            todo.push(r.index);
+        }
+      }
+    }
+    std::sort(items.begin(), items.end(),
+              [](const Item& a, const Item& b) { return a.key < b.key; });
+    out.clear();
+    for (const Item& it : items) out.add(it.b, it.r.index, it.r.count);
+    out.pad();
+  }
+
+  /// Nearest slot of `p` among the leaves of `list` (a superset of the leaves the per-point
+  /// search needs), starting from the block of slot `seed` (or none).
+  std::uint32_t scan_list(const LeafList& list, LeafList& pl, const Vec3<T>& p, std::uint32_t seed,
+                          std::vector<T>& d2s) const noexcept {
+    T b2 = std::numeric_limits<T>::infinity();
+    std::uint32_t best = bvh::ChildRef::none;
+    std::uint32_t seed_block = bvh::ChildRef::none;
+    if (seed != bvh::ChildRef::none) {
+      seed_block = seed / std::uint32_t(W);
+      s_.scan_blocks(seed_block, std::uint32_t(W), p, b2, best);
+    }
+    const std::size_t n = list.size(), np = list.lo_x.size();
+    T* EBGEOM_RESTRICT d2 = d2s.data();
+    const T* EBGEOM_RESTRICT lx = list.lo_x.data();
+    const T* EBGEOM_RESTRICT ly = list.lo_y.data();
+    const T* EBGEOM_RESTRICT lz = list.lo_z.data();
+    const T* EBGEOM_RESTRICT hx = list.hi_x.data();
+    const T* EBGEOM_RESTRICT hy = list.hi_y.data();
+    const T* EBGEOM_RESTRICT hz = list.hi_z.data();
+    boxes_distance2(np, lx, ly, lz, hx, hy, hz, p, d2);
+    // Supporting planes bound each triangle's distance from below (`block_planes`). Rounding: the
+    // planes carry errors of a few ulps of the coordinates (`plane_margin_`) and the kernel's
+    // squared distances those `prune_limit` allows for; the margins exceed both.
+    const T rel = T(256) * std::numeric_limits<T>::epsilon();
+    T lim = bvh::prune_limit(b2, s_.slack);
+    T r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+    // Branch-free compaction of the boxes within the bound (few of them), then the scan.
+    std::uint32_t* EBGEOM_RESTRICT idx = reinterpret_cast<std::uint32_t*>(d2 + np);
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      idx[m] = std::uint32_t(i);
+      m += d2[i] < lim;
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t i = idx[k];
+      if (!(d2[i] < lim) || (list.first[i] == seed_block && list.count[i] <= std::uint32_t(W)))
+        continue;
+      const std::size_t j = list.root[i];
+      if (pl.planes[j]) {
+        const T* nx = pl.pnx.data() + j * W;
+        const T* ny = pl.pny.data() + j * W;
+        const T* nz = pl.pnz.data() + j * W;
+        const T* of = pl.poff.data() + j * W;
+        T lb = std::numeric_limits<T>::infinity();
+        for (int l = 0; l < W; ++l)
+          lb = std::min(lb, nx[l] * p.x + ny[l] * p.y + nz[l] * p.z - of[l]);
+        if (lb > r) continue;
+      }
+      s_.scan_blocks(list.first[i], list.count[i], p, b2, best);
+      if (list.count[i] <= std::uint32_t(W) && !pl.planes[j]) {
+        T(&nx)[W] = *reinterpret_cast<T(*)[W]>(pl.pnx.data() + j * W);
+        T(&ny)[W] = *reinterpret_cast<T(*)[W]>(pl.pny.data() + j * W);
+        T(&nz)[W] = *reinterpret_cast<T(*)[W]>(pl.pnz.data() + j * W);
+        T(&of)[W] = *reinterpret_cast<T(*)[W]>(pl.poff.data() + j * W);
+        block_planes(s_.blocks[list.first[i]], p, nx, ny, nz, of);
+        pl.planes[j] = 1;
+      }
+      lim = bvh::prune_limit(b2, s_.slack);
+      r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+    }
+    return best;
+  }
+
+  /// Samples [a, b) of the job's tile; `parent` lists the candidate leaves of an
+  /// enclosing block (nullptr: the whole BVH).
+  void solve_lattice(LatticeJob& job, const std::array<std::size_t, 3>& a,
+                     const std::array<std::size_t, 3>& b, LeafList* parent, int level) const {
+    const auto& dims = job.dims;
+    auto index = [&](std::size_t x, std::size_t y, std::size_t z) {
+      return x + dims[0] * (y + dims[1] * z);
+    };
+    const Vec3<T> c0 = job.pts[index(a[0], a[1], a[2])];
+    const Vec3<T> c1 = job.pts[index(b[0] - 1, b[1] - 1, b[2] - 1)];
+    const Aabb<T> box(min(c0, c1), max(c0, c1));
+    const std::size_t nsamples = (b[0] - a[0]) * (b[1] - a[1]) * (b[2] - a[2]);
+    LeafList& list = job.lists[level];
+    // One search at the middle sample bounds every sample's distance.
+    const std::size_t qi = index((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2);
+    const Vec3<T> q = job.pts[qi];
+    if (job.slot[qi] == bvh::ChildRef::none) {
+      if (parent == nullptr) {
+        T b2 = std::numeric_limits<T>::infinity();
+        std::uint32_t best = bvh::ChildRef::none;
+        s_.nearest_slot(q, b2, best);
+        job.slot[qi] = best;
+      } else {
+        job.slot[qi] = scan_list(*parent, job.lists[0], q, job.last, job.d2);
+      }
+      job.last = job.slot[qi];
+    }
+    {
+      T dq2 = std::numeric_limits<T>::infinity();
+      std::uint32_t dummy = bvh::ChildRef::none;
+      s_.scan_blocks(job.slot[qi] / std::uint32_t(W), std::uint32_t(W), q, dq2, dummy);
+      const T eps = std::numeric_limits<T>::epsilon();
+      const T u = (std::sqrt(dq2) + std::sqrt(box.max_distance2(q))) * (T(1) + T(64) * eps);
+      const T lim2 = bvh::prune_limit(u * u, s_.slack);
+      if (parent == nullptr) {
+        collect_leaves(box, lim2, box.center(), list);
+      } else {
+        list.clear();
+        for (std::size_t i = 0; i < parent->size(); ++i) {
+          const Aabb<T> lb({parent->lo_x[i], parent->lo_y[i], parent->lo_z[i]},
+                           {parent->hi_x[i], parent->hi_y[i], parent->hi_z[i]});
+          if (box_box_distance2(lb, box) < lim2) list.add_from(*parent, i);
+        }
+        list.pad();
+      }
+    }
+    if (job.d2.size() < 2 * list.lo_x.size()) job.d2.resize(2 * list.lo_x.size());
+    if (list.size() > lattice_split_leaves && nsamples > 8 && level < 7) {
+      std::array<std::size_t, 3> m;
+      for (int d = 0; d < 3; ++d) m[d] = b[d] - a[d] > 1 ? (a[d] + b[d]) / 2 : b[d];
+      for (int o = 0; o < 8; ++o) {
+        std::array<std::size_t, 3> ca, cb;
+        bool empty = false;
+        for (int d = 0; d < 3; ++d) {
+          const bool hi = (o >> d) & 1;
+          ca[d] = hi ? m[d] : a[d];
+          cb[d] = hi ? b[d] : m[d];
+          empty = empty || ca[d] >= cb[d];
+        }
+        if (!empty) solve_lattice(job, ca, cb, &list, level + 1);
+      }
+      return;
+    }
+    for (std::size_t z = a[2]; z < b[2]; ++z)
+      for (std::size_t y = a[1]; y < b[1]; ++y)
+        for (std::size_t x = a[0]; x < b[0]; ++x) {
+          const std::size_t l = index(x, y, z);
+          if (job.slot[l] != bvh::ChildRef::none) continue;
+          job.slot[l] = scan_list(list, job.lists[0], job.pts[l], job.last, job.d2);
+          job.last = job.slot[l];
+        }
+  }
+
+  static constexpr std::size_t lattice_split_leaves = 128;
+
+  BlockSearch<T, K, W> s_;
+  T plane_margin_;
+};
+
+} // namespace detail
+} // namespace ebgeom
