@@ -37,7 +37,7 @@ __all__ = [
     "__version__", "Mesh", "MeshFormatError", "SceneError", "read_mesh", "MeshSdf", "Scene",
     "Shape", "sphere", "box", "capsule", "cylinder", "cone", "torus", "plane", "mesh",
     "union", "intersection", "difference", "load_scene", "scene_from_json", "Grid",
-    "sample_grid", "sample_points", "QueryResult", "SIGN_MODES",
+    "SparseGrid", "sample_grid", "sample_points", "QueryResult", "SIGN_MODES",
 ]
 
 #: The sign modes, spelled as the CLI's ``--sign``.
@@ -216,7 +216,11 @@ class MeshSdf(_SdfBase):
 class Scene(_SdfBase):
     """A compiled scene: analytic shapes, meshes, transforms and CSG evaluated in C++ (no Python
     call per point). Made by ``load_scene``, ``scene_from_json`` or ``Shape.compile``; the scene
-    format is docs/scene-format.md (the CLI's)."""
+    format is docs/scene-format.md (the CLI's).
+
+    >>> scene = (ebgeom.sphere(1.0) - ebgeom.box(size=(1, 1, 3))).compile("double")
+    >>> scene([[0, 0, 0], [2, 0, 0]]), scene.kind, scene.bounds()
+    """
 
     def __init__(self, impl: Any, source: Any = None):
         self._impl = impl
@@ -224,6 +228,7 @@ class Scene(_SdfBase):
 
     @property
     def triangle_count(self) -> int:
+        """Triangles of the meshes in the scene (0 for analytic shapes only)."""
         return self._impl.triangle_count
 
     def __repr__(self) -> str:
@@ -234,7 +239,11 @@ def load_scene(path: PathLike, precision: str = "float") -> Scene:
     """Reads and compiles a JSON scene file (docs/scene-format.md), with the same meaning as
     ``ebgeom sdf scene.json``; relative mesh paths are relative to the file. Raises
     ``ebgeom.SceneError`` (a ValueError) naming the file, line/column or the JSON pointer of the
-    bad value; FileNotFoundError when the file does not exist."""
+    bad value; FileNotFoundError when the file does not exist.
+
+    >>> scene = ebgeom.load_scene("examples/scenes/csg.json", precision="double")
+    >>> scene([[0, 0, 0]]), ebgeom.sample_grid(scene, res=64).values.shape
+    """
     p = _os.fspath(path)
     if not _os.path.exists(p):
         raise FileNotFoundError(2, "No such file or directory", p)
@@ -244,7 +253,10 @@ def load_scene(path: PathLike, precision: str = "float") -> Scene:
 def scene_from_json(scene: Union[str, Dict[str, Any]], precision: str = "float",
                     base_dir: Optional[PathLike] = None) -> Scene:
     """Compiles a scene given as a dict or a JSON string; relative mesh paths are relative to
-    ``base_dir`` (default: the current directory)."""
+    ``base_dir`` (default: the current directory).
+
+    >>> ebgeom.scene_from_json({"type": "sphere", "radius": 1.0})([[2, 0, 0]])   # array([1.])
+    """
     text = scene if isinstance(scene, str) else _json.dumps(scene)
     label = _os.path.join(_os.fspath(base_dir), "<scene>") if base_dir is not None else "<scene>"
     return Scene(_ebgeom.compile_scene(text, label, precision, False), scene)
@@ -289,9 +301,12 @@ class Shape:
 
     def __call__(self, points: Any, *, threads: int = 0, precision: str = "double",
                  out: Optional[np.ndarray] = None) -> np.ndarray:
+        """S at ``points`` (N, 3), computed in ``precision`` (default double) by the compiled
+        scene; see ``MeshSdf.__call__`` for arrays, ``threads`` and ``out``."""
         return self.compile(precision)(points, threads=threads, out=out)
 
-    def bounds(self):
+    def bounds(self) -> Tuple[Tuple[float, float, float], Tuple[float, float, float]]:
+        """((x0, y0, z0), (x1, y1, z1)): a box holding the surface (infinite for planes)."""
         return self.compile("double").bounds()
 
     def _with(self, **keys: Any) -> "Shape":
@@ -303,6 +318,7 @@ class Shape:
         return Shape(node)
 
     def translate(self, v: Sequence[float]) -> "Shape":
+        """The shape moved by ``v``: ``ebgeom.sphere(1).translate((0, 0, 2))``."""
         return self._with(translate=_vec(v, "translate"))
 
     def rotate(self, axis: Sequence[float], degrees: float) -> "Shape":
@@ -314,9 +330,11 @@ class Shape:
         return self._with(scale=float(s))
 
     def offset(self, r: float) -> "Shape":
+        """S - r: the surface moved outwards by ``r`` (inwards for r < 0), rounding edges."""
         return self._with(offset=float(r))
 
     def shell(self, t: float) -> "Shape":
+        """|S| - t: a hollow shell of thickness 2 t around the surface."""
         return self._with(shell=float(t))
 
     def __or__(self, other: "Shape") -> "Shape":
@@ -333,12 +351,20 @@ class Shape:
 
 
 def sphere(radius: float, center: Sequence[float] = (0, 0, 0)) -> Shape:
+    """A sphere of ``radius`` around ``center`` (exact SDF).
+
+    >>> ebgeom.sphere(1.0, center=(0, 0, 1))([[0, 0, 0]])   # array([0.])
+    """
     return Shape({"type": "sphere", "center": _vec(center, "center"), "radius": float(radius)})
 
 
 def box(size: Optional[Sequence[float]] = None, center: Sequence[float] = (0, 0, 0), *,
         half_size: Optional[Sequence[float]] = None, rounding: float = 0.0) -> Shape:
-    """An axis-aligned box of full edge lengths ``size`` (or ``half_size``), optionally rounded."""
+    """An axis-aligned box of full edge lengths ``size`` (or ``half_size``) around ``center``,
+    its edges rounded by ``rounding`` (exact SDF).
+
+    >>> ebgeom.box(size=(2, 1, 1), rounding=0.1)([[0, 0, 0]])
+    """
     n: Dict[str, Any] = {"type": "box", "center": _vec(center, "center")}
     if (size is None) == (half_size is None):
         raise ValueError("box: give exactly one of size or half_size")
@@ -352,35 +378,57 @@ def box(size: Optional[Sequence[float]] = None, center: Sequence[float] = (0, 0,
 
 
 def capsule(a: Sequence[float], b: Sequence[float], radius: float) -> Shape:
+    """The points within ``radius`` of the segment from ``a`` to ``b`` (exact SDF).
+
+    >>> ebgeom.capsule((0, 0, 0), (0, 0, 1), 0.2)([[1, 0, 0.5]])   # array([0.8])
+    """
     return Shape({"type": "capsule", "a": _vec(a, "a"), "b": _vec(b, "b"),
                   "radius": float(radius)})
 
 
 def cylinder(a: Sequence[float], b: Sequence[float], radius: float) -> Shape:
-    """A capped cylinder from ``a`` to ``b``."""
+    """A capped cylinder of ``radius`` whose axis runs from ``a`` to ``b`` (exact SDF).
+
+    >>> ebgeom.cylinder((0, 0, -1), (0, 0, 1), 0.5)([[0, 0, 0]])   # array([-0.5])
+    """
     return Shape({"type": "cylinder", "a": _vec(a, "a"), "b": _vec(b, "b"),
                   "radius": float(radius)})
 
 
 def cone(a: Sequence[float], b: Sequence[float], radius_a: float, radius_b: float) -> Shape:
+    """A capped cone from ``a`` (radius ``radius_a``) to ``b`` (``radius_b``); exact SDF.
+
+    >>> ebgeom.cone((0, 0, 0), (0, 0, 1), 0.5, 0.0)([[0, 0, -1]])   # array([1.])
+    """
     return Shape({"type": "cone", "a": _vec(a, "a"), "b": _vec(b, "b"),
                   "radius_a": float(radius_a), "radius_b": float(radius_b)})
 
 
 def torus(major_radius: float, minor_radius: float, center: Sequence[float] = (0, 0, 0)) -> Shape:
-    """A torus around the z axis."""
+    """A torus around the z axis through ``center``: the points within ``minor_radius`` of the
+    circle of ``major_radius`` (exact SDF).
+
+    >>> ebgeom.torus(1.0, 0.25)([[1, 0, 0]])                       # array([-0.25])
+    """
     return Shape({"type": "torus", "center": _vec(center, "center"),
                   "major_radius": float(major_radius), "minor_radius": float(minor_radius)})
 
 
 def plane(normal: Sequence[float], point: Sequence[float] = (0, 0, 0)) -> Shape:
-    """The half-space behind the plane (inside where (x - point)·normal < 0)."""
+    """The half-space behind the plane through ``point`` (inside where (x - point)·normal < 0;
+    an unbounded shape: intersect it with a bounded one before sampling a grid).
+
+    >>> (ebgeom.sphere(1.0) & ebgeom.plane((0, 0, 1)))([[0, 0, 0.5]])   # array([0.5])
+    """
     return Shape({"type": "plane", "normal": _vec(normal, "normal"), "point": _vec(point, "point")})
 
 
 def mesh(path: PathLike, sign: str = "auto") -> Shape:
     """A mesh file as a scene node (its exact SDF with ``sign`` mode), for CSG with other shapes.
-    The path is resolved when the shape is compiled (relative to the current directory)."""
+    The path is resolved when the shape is compiled (relative to the current directory).
+
+    >>> part = ebgeom.mesh("part.stl") - ebgeom.cylinder((0, 0, -1), (0, 0, 1), 0.1)
+    """
     return Shape({"type": "mesh", "path": _os.path.abspath(_os.fspath(path)), "sign": sign})
 
 
@@ -399,16 +447,28 @@ def _csg(kind: str, shapes: Sequence[Shape], smooth: float) -> Shape:
 
 
 def union(*shapes: Shape, smooth: float = 0.0) -> Shape:
-    """The union of shapes; ``smooth`` > 0 blends them over that distance (polynomial smooth min)."""
+    """The union of shapes (``a | b``); ``smooth`` > 0 blends them over that distance
+    (polynomial smooth minimum).
+
+    >>> blob = ebgeom.union(ebgeom.sphere(1), ebgeom.sphere(1, (1.5, 0, 0)), smooth=0.3)
+    """
     return _csg("union", shapes, smooth)
 
 
 def intersection(*shapes: Shape, smooth: float = 0.0) -> Shape:
+    """The intersection of shapes (``a & b``); ``smooth`` > 0 blends the edges.
+
+    >>> lens = ebgeom.intersection(ebgeom.sphere(1, (0, 0, -0.5)), ebgeom.sphere(1, (0, 0, 0.5)))
+    """
     return _csg("intersection", shapes, smooth)
 
 
 def difference(*shapes: Shape, smooth: float = 0.0) -> Shape:
-    """The first shape minus the others."""
+    """The first shape minus the others (``a - b``); ``smooth`` > 0 blends the edges.
+
+    >>> hole = ebgeom.cylinder((0, 0, -1), (0, 0, 1), 0.4)
+    >>> nut = ebgeom.difference(ebgeom.box(size=(2, 2, 0.5)), hole)
+    """
     return _csg("difference", shapes, smooth)
 
 
@@ -420,7 +480,12 @@ class Grid:
     """A dense SDF grid. ``values[k, j, i]`` is S at ``origin + (i, j, k) * spacing`` (shape
     (NZ, NY, NX), x fastest: the CLI's .npy layout). ``box`` is ((x0, y0, z0), (x1, y1, z1)),
     ``centering`` "cell" (samples at cell centres) or "node" (samples on the box faces too),
-    ``band`` the narrow band half-width in length units (0: exact everywhere)."""
+    ``band`` the narrow band half-width in length units (0: exact everywhere).
+
+    >>> g = ebgeom.sample_grid(ebgeom.sphere(1.0), res=(32, 32, 16))
+    >>> g.values.shape, g.dims, g.origin, g.spacing       # (16, 32, 32), (32, 32, 16), ...
+    >>> g.save("sphere.vti")
+    """
     values: np.ndarray
     origin: Tuple[float, float, float]
     spacing: Tuple[float, float, float]
@@ -430,7 +495,7 @@ class Grid:
 
     @property
     def dims(self) -> Tuple[int, int, int]:
-        """(NX, NY, NZ)."""
+        """(NX, NY, NZ): samples along x, y, z (``values.shape`` reversed)."""
         nz, ny, nx = self.values.shape
         return (nx, ny, nz)
 
@@ -448,9 +513,93 @@ class Grid:
 
     def save(self, path: PathLike) -> None:
         """Writes the grid with the CLI's writers, by extension: .vti (ParaView ImageData), .npy
-        (shape (NZ, NY, NX)) or .raw (+ a .json sidecar with dims, origin, spacing)."""
+        (shape (NZ, NY, NX)), .raw (+ a .json sidecar with dims, origin, spacing) or .npz (the
+        dense .npz of ``ebgeom sdf -o OUT.npz``: arrays sdf, origin, spacing, box, centering).
+
+        >>> ebgeom.sample_grid(ebgeom.sphere(1.0), res=32).save("sphere.vti")
+        """
         lo, hi = self.box
         _ebgeom.save_grid(_os.fspath(path), self.values, [*lo, *hi], self.centering)
+
+
+class SparseGrid:
+    """A narrow band stored by 8^3 tiles, for grids whose dense array would not fit: what
+    ``sample_grid(..., band=W, sparse=True)`` returns, and the content of the CLI's sparse
+    ``.npz`` (``ebgeom sdf -o OUT.npz --band W``) as arrays of the same names. Memory: the kept
+    tiles (512 values and 12 bytes each) plus 4 bytes per tile of the whole grid
+    (``memory_bytes``).
+
+    - ``blocks`` (M, 3) uint32: tile coordinates (tx, ty, tz) of kept tile b, whose samples are
+      (8 tx + x, 8 ty + y, 8 tz + z);
+    - ``values`` (M, 8, 8, 8): ``values[b, z, y, x]`` is S at that sample, exactly the dense
+      grid's value; local samples past the grid's last sample hold +band;
+    - ``tile_code`` (TZ, TY, TX) int32: the index b of each kept tile, or -1 (a skipped tile
+      inside the surface: -band everywhere) or -2 (skipped, outside: +band);
+    - ``origin``, ``spacing``, ``box``, ``centering``, ``band``, ``dims``: as in ``Grid``.
+
+    The arrays are read-only views of the C++ grid (no copy; copy them to modify).
+    ``to_dense()`` gives the ``Grid`` that ``sample_grid(..., band=W)`` gives; ``save(path)``
+    writes .npz (the CLI's file, byte for byte).
+
+    >>> band = ebgeom.sample_grid(sdf, res=2048, band=3, sparse=True)
+    >>> band.blocks.shape, band.memory_bytes          # kept tiles, bytes held
+    >>> band.save("bunny_band.npz")                   # = ebgeom sdf bunny.obj --res 2048 --band 3
+    """
+
+    #: Samples per tile edge.
+    tile: int = 8
+
+    def __init__(self, impl: Any, origin: Tuple[float, float, float],
+                 spacing: Tuple[float, float, float],
+                 box: Tuple[Tuple[float, float, float], Tuple[float, float, float]],
+                 dims: Tuple[int, int, int], centering: str, band: float):
+        self._impl = impl
+        self.origin, self.spacing, self.box = origin, spacing, box
+        self.dims, self.centering, self.band = dims, centering, band
+
+    @property
+    def blocks(self) -> np.ndarray:
+        """(M, 3) uint32 tile coordinates (tx, ty, tz) of the kept tiles, in Morton order."""
+        return self._impl.blocks
+
+    @property
+    def values(self) -> np.ndarray:
+        """(M, 8, 8, 8) values of the kept tiles: ``values[b, z, y, x]``."""
+        return self._impl.values
+
+    @property
+    def tile_code(self) -> np.ndarray:
+        """(TZ, TY, TX) int32: kept tile index, -1 (skipped, inside) or -2 (skipped, outside)."""
+        return self._impl.tile_code
+
+    @property
+    def dtype(self) -> np.dtype:
+        """numpy.float32 or numpy.float64: the dtype of ``values``."""
+        return np.dtype(np.float64 if self._impl.precision == "double" else np.float32)
+
+    @property
+    def memory_bytes(self) -> int:
+        """Bytes the grid holds (tile table, kept tiles' coordinates and values)."""
+        return self._impl.memory_bytes
+
+    def to_dense(self) -> Grid:
+        """The dense ``Grid``: kept tiles' values, -band/+band in skipped tiles inside/outside
+        (equal to ``sample_grid`` with the same options and ``sparse=False``, except on an open
+        mesh with sign="pseudonormal", where a skipped tile takes the sign at its centre). Raises
+        MemoryError when the dense array does not fit."""
+        return Grid(self._impl.to_dense(), self.origin, self.spacing, self.box, self.centering,
+                    self.band)
+
+    def save(self, path: PathLike) -> None:
+        """Writes the band as the CLI's sparse .npz (``path`` ends in .npz), byte for byte; read
+        it with ``numpy.load``. For .vti, .npy or .raw, ``to_dense().save(path)``; for an OpenVDB
+        level set, the CLI (``ebgeom sdf INPUT -o OUT.vdb --band W``)."""
+        self._impl.save(_os.fspath(path))
+
+    def __repr__(self) -> str:
+        nx, ny, nz = self.dims
+        return (f"<ebgeom.SparseGrid {nx} x {ny} x {nz}, {len(self.blocks)} of "
+                f"{self.tile_code.size} tiles kept, band {self.band:g}>")
 
 
 def _as_sdf(sdf: Any) -> Any:
@@ -464,7 +613,8 @@ def _as_sdf(sdf: Any) -> Any:
 def sample_grid(sdf: Union[MeshSdf, Scene, Shape], box: Optional[Sequence[float]] = None,
                 res: Union[None, int, Sequence[int]] = None, dx: Optional[float] = None,
                 pad: float = 0.1, band: Optional[float] = None, nodes: bool = False,
-                threads: int = 0) -> Grid:
+                threads: int = 0, sparse: Union[bool, str] = False
+                ) -> Union[Grid, SparseGrid]:
     """Samples ``sdf`` on a regular grid, exactly as ``ebgeom sdf`` does with the same options
     (same sample positions, same values bit for bit).
 
@@ -473,14 +623,35 @@ def sample_grid(sdf: Union[MeshSdf, Scene, Shape], box: Optional[Sequence[float]
     64); or ``dx``: cubic cells of that size (the box grows to a whole number of cells).
     ``band``: narrow band of that many times the largest spacing: exact inside, ±band outside.
     ``nodes``: node-centred samples (on the box faces) instead of cell centres. A Shape is
-    sampled in float (compile it with ``precision="double"`` for double)."""
+    sampled in float (compile it with ``precision="double"`` for double).
+
+    ``sparse``: False (default) returns a dense ``Grid``; True returns a ``SparseGrid`` holding
+    only the 8^3 tiles the narrow band needs (needs ``band``; ``ebgeom sdf -o OUT.npz --band W``),
+    for resolutions whose dense array would not fit; "auto" returns a ``SparseGrid`` when a band
+    is given and the dense array would take more than half of the available memory, else a
+    ``Grid``. A dense grid that does not fit raises MemoryError.
+
+    >>> g = ebgeom.sample_grid(sdf, res=128)                          # Grid, values (128,)*3
+    >>> b = ebgeom.sample_grid(sdf, res=2048, band=3, sparse=True)    # SparseGrid
+    """
     impl = _as_sdf(sdf)
     b: list = []
     if box is not None:
         b = [float(x) for x in np.asarray(box, dtype=float).reshape(-1)]
     r: list = [] if res is None else ([int(res)] if np.ndim(res) == 0 else [int(x) for x in res])
-    d = _ebgeom.sample_grid(impl, b, r, 0.0 if dx is None else float(dx), float(pad),
-                            0.0 if band is None else float(band), bool(nodes), int(threads))
+    h = 0.0 if dx is None else float(dx)
+    w = 0.0 if band is None else float(band)
+    if sparse == "auto":
+        _, dense_bytes = _ebgeom.grid_size(impl, b, r, h, float(pad), bool(nodes))
+        avail = _ebgeom.available_memory()
+        sparse = w > 0 and avail > 0 and dense_bytes > avail // 2
+    elif not isinstance(sparse, (bool, np.bool_)):
+        raise ValueError(f"sparse: expected True, False or 'auto', got {sparse!r}")
+    if sparse:
+        d = _ebgeom.sample_sparse(impl, b, r, h, float(pad), w, bool(nodes), int(threads))
+        return SparseGrid(d["grid"], d["origin"], d["spacing"], d["box"], d["dims"],
+                          d["centering"], d["band"])
+    d = _ebgeom.sample_grid(impl, b, r, h, float(pad), w, bool(nodes), int(threads))
     return Grid(d["values"], d["origin"], d["spacing"], d["box"], d["centering"], d["band"])
 
 
@@ -496,7 +667,11 @@ def sample_points(sdf: MeshSdf, n: int, near_surface: float = 0.9, sigma: Option
     Gaussian noise of standard deviation ``sigma`` (default 1% of the bounding-box diagonal);
     the others are uniform in the bounding box grown by ``pad`` per side. The same ``seed`` gives
     the same points (NumPy's default generator). Returns (points (n, 3), distances (n,)) in the
-    SDF's precision; the distances are ``sdf(points)``."""
+    SDF's precision; the distances are ``sdf(points)``.
+
+    >>> sdf = ebgeom.MeshSdf("scan.ply", sign="winding", precision="double")
+    >>> pts, d = ebgeom.sample_points(sdf, 100_000, near_surface=0.95, sigma=0.005, seed=0)
+    """
     if not isinstance(sdf, MeshSdf):
         raise TypeError("sample_points: expected an ebgeom.MeshSdf")
     n = int(n)

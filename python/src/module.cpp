@@ -25,6 +25,7 @@
 
 #include "ebgeom/eval/evaluate.hpp"
 #include "ebgeom/eval/grid.hpp"
+#include "ebgeom/eval/sparse_grid.hpp"
 #include "ebgeom/eval/write_grid.hpp"
 #include "ebgeom/io/read_mesh.hpp"
 #include "ebgeom/io/write_mesh.hpp"
@@ -34,6 +35,7 @@
 #include "common.hpp"
 #include "mesh_input.hpp"
 #include "mesh_report.hpp"
+#include "npz.hpp"
 #include "program.hpp"
 #include "scene.hpp"
 #include "sdf_job.hpp"
@@ -447,72 +449,17 @@ template <class T> py::tuple mesh_arrays_as(const Sdf& s) {
 
 // ---- grids ------------------------------------------------------------------------------------
 
-/// The grid the CLI's `--res/--dx/--box/--pad/--nodes` would sample, as a dict (box, dims,
-/// spacing, origin, centering), then the samples.
-template <class T>
-py::dict sample_grid_as(const Sdf& s, const std::vector<double>& box,
-                        const std::vector<std::size_t>& res, double dx, double pad, double band,
-                        bool nodes, int threads) {
-  const SdfImpl<T>& impl = s.impl<T>();
-  cli::SdfOptions o;
-  o.input = s.label.empty() ? std::string("the SDF") : s.label;
-  o.box = box;
-  o.res = res;
-  o.dx = dx;
-  o.pad = pad;
-  o.band = band;
-  o.nodes = nodes;
-  GridSpec<T> spec;
-  try {
-    spec = cli::make_spec<T>(o, impl.prog.bounds());
-  } catch (const cli::CliError& e) {
-    std::string w = e.what();
-    for (auto [from, to] : {std::pair<std::string, std::string>{"--box", "box"},
-                            {"--dx", "dx"},
-                            {"--res/--dx", "res/dx"},
-                            {"give --box", "give box="}})
-      for (std::size_t at = w.find(from); at != std::string::npos; at = w.find(from, at + 1))
-        w.replace(at, from.size(), to);
-    throw py::value_error(w);
-  }
-  const std::uint64_t bytes = std::uint64_t(spec.size()) * sizeof(T);
-  const std::uint64_t avail = cli::available_memory_bytes();
-  if (avail != 0 && bytes > avail)
-    throw py::value_error("a " + std::to_string(spec.nx()) + " x " + std::to_string(spec.ny()) +
-                          " x " + std::to_string(spec.nz()) + " grid needs " +
-                          cli::human_bytes(bytes) + " but " + cli::human_bytes(avail) +
-                          " are available; lower res or raise dx, or shrink the box");
-  py::array_t<T> values({py::ssize_t(spec.nz()), py::ssize_t(spec.ny()), py::ssize_t(spec.nx())});
-  GridOptions gopt;
-  gopt.exec = exec_of(threads);
-  const Vec3<T> h = spec.spacing();
-  gopt.band = band * double(max_component(h));
-  T* out = values.mutable_data();
-  {
-    py::gil_scoped_release nogil;
-    auto ok = sample_grid(impl.prog, spec, Span<T>(out, spec.size()), gopt);
-    if (!ok) {
-      py::gil_scoped_acquire gil;
-      throw py::value_error(ok.error().what());
-    }
-  }
-  const Vec3<T> org = spec.origin();
-  py::dict r;
-  r["values"] = values;
-  r["origin"] = py::make_tuple(double(org.x), double(org.y), double(org.z));
-  r["spacing"] = py::make_tuple(double(h.x), double(h.y), double(h.z));
-  r["box"] = py::make_tuple(
-      py::make_tuple(double(spec.box.lo.x), double(spec.box.lo.y), double(spec.box.lo.z)),
-      py::make_tuple(double(spec.box.hi.x), double(spec.box.hi.y), double(spec.box.hi.z)));
-  r["dims"] = py::make_tuple(spec.nx(), spec.ny(), spec.nz());
-  r["centering"] = to_string(spec.centering);
-  r["band"] = gopt.band;
-  return r;
-}
+/// The grid options of `sample_grid`, as the CLI's `--box/--res/--dx/--pad/--band/--nodes`.
+struct GridArgs {
+  std::vector<double> box;
+  std::vector<std::size_t> res;
+  double dx = 0, pad = 0.1, band = 0;
+  bool nodes = false;
+  int threads = 0;
+};
 
-py::dict sample_grid_py(const Sdf& s, const std::vector<double>& box,
-                        const std::vector<std::size_t>& res, double dx, double pad, double band,
-                        bool nodes, int threads) {
+GridArgs grid_args(const std::vector<double>& box, const std::vector<std::size_t>& res, double dx,
+                   double pad, double band, bool nodes, int threads) {
   if (!box.empty() && box.size() != 6)
     throw py::value_error("box: expected 6 numbers (x0, y0, z0, x1, y1, z1)");
   if (!res.empty() && res.size() != 1 && res.size() != 3)
@@ -524,11 +471,245 @@ py::dict sample_grid_py(const Sdf& s, const std::vector<double>& box,
   if (dx > 0 && !res.empty()) throw py::value_error("give res or dx, not both");
   if (!(pad >= 0 && pad <= 100)) throw py::value_error("pad: expected 0 to 100");
   if (!(band >= 0) || !std::isfinite(band)) throw py::value_error("band: expected a number >= 0");
-  return s.is_double() ? sample_grid_as<double>(s, box, res, dx, pad, band, nodes, threads)
-                       : sample_grid_as<float>(s, box, res, dx, pad, band, nodes, threads);
+  exec_of(threads);
+  return {box, res, dx, pad, band, nodes, threads};
 }
 
-/// Writes a (NZ, NY, NX) grid with the CLI's writers (.vti, .npy, .raw + .json).
+/// The grid the CLI's options would sample (`make_spec`), its messages in Python's words.
+template <class T> GridSpec<T> spec_of(const Sdf& s, const GridArgs& a) {
+  cli::SdfOptions o;
+  o.input = s.label.empty() ? std::string("the SDF") : s.label;
+  o.box = a.box;
+  o.res = a.res;
+  o.dx = a.dx;
+  o.pad = a.pad;
+  o.band = a.band;
+  o.nodes = a.nodes;
+  try {
+    return cli::make_spec<T>(o, s.impl<T>().prog.bounds());
+  } catch (const cli::CliError& e) {
+    std::string w = e.what();
+    for (auto [from, to] : {std::pair<std::string, std::string>{"--box", "box"},
+                            {"--dx", "dx"},
+                            {"--res/--dx", "res/dx"},
+                            {"give --box", "give box="}})
+      for (std::size_t at = w.find(from); at != std::string::npos; at = w.find(from, at + 1))
+        w.replace(at, from.size(), to);
+    throw py::value_error(w);
+  }
+}
+
+template <class T> std::string grid_name(const GridSpec<T>& spec) {
+  return "a " + std::to_string(spec.nx()) + " x " + std::to_string(spec.ny()) + " x " +
+         std::to_string(spec.nz()) + " grid of " + (sizeof(T) == 4 ? "float" : "double");
+}
+
+/// `count * each` bytes, saturated at the largest uint64 (grids up to 2^21 per axis overflow).
+std::uint64_t bytes_of(std::uint64_t count, std::uint64_t each) {
+  return count > std::numeric_limits<std::uint64_t>::max() / each
+             ? std::numeric_limits<std::uint64_t>::max()
+             : count * each;
+}
+
+/// Raises MemoryError when `bytes` exceed the memory available (when it is known).
+void require_memory(std::uint64_t bytes, const std::string& what, const std::string& hint) {
+  const std::uint64_t avail = cli::available_memory_bytes();
+  if (avail != 0 && bytes > avail) {
+    PyErr_SetString(PyExc_MemoryError, (what + " needs " + cli::human_bytes(bytes) + " but " +
+                                        cli::human_bytes(avail) + " are available; " + hint)
+                                           .c_str());
+    throw py::error_already_set();
+  }
+}
+
+/// The geometry of a sampled grid: origin, spacing, box, dims, centering, band (length units).
+template <class T> py::dict geometry_of(const GridSpec<T>& spec, double band) {
+  const Vec3<T> org = spec.origin(), h = spec.spacing();
+  py::dict r;
+  r["origin"] = py::make_tuple(double(org.x), double(org.y), double(org.z));
+  r["spacing"] = py::make_tuple(double(h.x), double(h.y), double(h.z));
+  r["box"] = py::make_tuple(
+      py::make_tuple(double(spec.box.lo.x), double(spec.box.lo.y), double(spec.box.lo.z)),
+      py::make_tuple(double(spec.box.hi.x), double(spec.box.hi.y), double(spec.box.hi.z)));
+  r["dims"] = py::make_tuple(spec.nx(), spec.ny(), spec.nz());
+  r["centering"] = to_string(spec.centering);
+  r["band"] = band;
+  return r;
+}
+
+template <class T> GridOptions grid_options(const GridSpec<T>& spec, const GridArgs& a) {
+  GridOptions gopt;
+  gopt.exec = exec_of(a.threads);
+  gopt.band = a.band * double(max_component(spec.spacing())); // as the CLI's --band
+  return gopt;
+}
+
+/// The dense grid of `ebgeom sdf` with the same options: the geometry plus `values`.
+template <class T> py::dict sample_grid_as(const Sdf& s, const GridArgs& a) {
+  const GridSpec<T> spec = spec_of<T>(s, a);
+  require_memory(bytes_of(spec.size(), sizeof(T)), grid_name(spec),
+                 "lower res or raise dx, shrink the box, or sample only a narrow band as a "
+                 "sparse grid (band=W, sparse=True)");
+  py::array_t<T> values({py::ssize_t(spec.nz()), py::ssize_t(spec.ny()), py::ssize_t(spec.nx())});
+  const GridOptions gopt = grid_options(spec, a);
+  T* out = values.mutable_data();
+  {
+    py::gil_scoped_release nogil;
+    auto ok = sample_grid(s.impl<T>().prog, spec, Span<T>(out, spec.size()), gopt);
+    if (!ok) {
+      py::gil_scoped_acquire gil;
+      throw py::value_error(ok.error().what());
+    }
+  }
+  py::dict r = geometry_of(spec, gopt.band);
+  r["values"] = values;
+  return r;
+}
+
+py::dict sample_grid_py(const Sdf& s, const std::vector<double>& box,
+                        const std::vector<std::size_t>& res, double dx, double pad, double band,
+                        bool nodes, int threads) {
+  const GridArgs a = grid_args(box, res, dx, pad, band, nodes, threads);
+  return s.is_double() ? sample_grid_as<double>(s, a) : sample_grid_as<float>(s, a);
+}
+
+/// (NX, NY, NZ) and the bytes of the dense grid the options give, without sampling.
+py::tuple grid_size_py(const Sdf& s, const std::vector<double>& box,
+                       const std::vector<std::size_t>& res, double dx, double pad, bool nodes) {
+  const GridArgs a = grid_args(box, res, dx, pad, 0, nodes, 0);
+  auto size = [&](auto spec) {
+    using T = typename decltype(spec)::scalar_type;
+    return py::make_tuple(py::make_tuple(spec.nx(), spec.ny(), spec.nz()),
+                          bytes_of(spec.size(), sizeof(T)));
+  };
+  return s.is_double() ? size(spec_of<double>(s, a)) : size(spec_of<float>(s, a));
+}
+
+// ---- sparse narrow-band grids -----------------------------------------------------------------
+
+/// A sparse narrow band (`SparseGrid<T>`, float or double). Its arrays reach Python as read-only
+/// views of the C++ vectors (no copy); the views keep this object alive.
+struct Sparse {
+  std::shared_ptr<SparseGrid<float>> f;
+  std::shared_ptr<SparseGrid<double>> d;
+
+  template <class Fn> decltype(auto) visit(Fn&& fn) const { return d ? fn(*d) : fn(*f); }
+};
+
+template <class T>
+py::array view_of(const py::object& owner, const T* data, std::vector<py::ssize_t> shape) {
+  py::array a(py::dtype::of<T>(), std::move(shape), data, owner);
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+template <class T> py::dict sample_sparse_as(const Sdf& s, const GridArgs& a) {
+  if (!(a.band > 0))
+    throw py::value_error("a sparse grid holds a narrow band: give band=W (W > 0 samples)");
+  const GridSpec<T> spec = spec_of<T>(s, a);
+  const GridOptions gopt = grid_options(spec, a);
+  const SdfImpl<T>& impl = s.impl<T>();
+  // Before sampling only the tile table is known, unless the SDF is implicit (a winding sign):
+  // then no tile can be skipped and every one is kept (as `ebgeom sdf -o OUT.npz --band W`).
+  std::uint64_t tiles = 1;
+  for (std::size_t n : spec.dims) tiles *= (n + grid_tile - 1) / grid_tile;
+  if (kind_of(impl.prog) == SdfKind::implicit)
+    require_memory(
+        bytes_of(tiles, sizeof(std::int32_t) + 12 + grid_tile * grid_tile * grid_tile * sizeof(T)),
+        "a band of " + grid_name(spec) + " of an implicit SDF (it keeps every tile)",
+        "a winding sign (what sign=\"auto\" picks for a mesh with holes) cannot skip tiles far "
+        "from the surface: use sign=\"pseudonormal\" or \"unsigned\", or lower res");
+  else
+    require_memory(bytes_of(tiles, sizeof(std::int32_t)), "the tile table of " + grid_name(spec),
+                   "lower res or raise dx, or shrink the box");
+  auto g = std::make_shared<SparseGrid<T>>();
+  {
+    py::gil_scoped_release nogil;
+    Result<SparseGrid<T>> r = make_error(ErrorCode::invalid_argument, "not sampled");
+    try {
+      r = sample_grid_sparse(impl.prog, spec, gopt);
+    } catch (const std::bad_alloc&) {
+      py::gil_scoped_acquire gil;
+      PyErr_SetString(PyExc_MemoryError,
+                      ("the tiles of the narrow band of " + grid_name(spec) +
+                       " do not fit in memory (" + cli::human_bytes(cli::available_memory_bytes()) +
+                       " available); lower res, narrow the band or shrink the box")
+                          .c_str());
+      throw py::error_already_set();
+    }
+    if (!r) {
+      py::gil_scoped_acquire gil;
+      throw py::value_error(r.error().what());
+    }
+    *g = std::move(*r);
+  }
+  Sparse sp;
+  if constexpr (std::is_same_v<T, double>)
+    sp.d = g;
+  else
+    sp.f = g;
+  py::dict r = geometry_of(spec, double(g->band)); // the fill value, in T (the .npz's `band`)
+  r["grid"] = py::cast(std::move(sp));
+  return r;
+}
+
+py::dict sample_sparse_py(const Sdf& s, const std::vector<double>& box,
+                          const std::vector<std::size_t>& res, double dx, double pad, double band,
+                          bool nodes, int threads) {
+  const GridArgs a = grid_args(box, res, dx, pad, band, nodes, threads);
+  return s.is_double() ? sample_sparse_as<double>(s, a) : sample_sparse_as<float>(s, a);
+}
+
+/// The dense (NZ, NY, NX) array of a sparse grid: kept tiles' values, ±band in skipped tiles
+/// (what the dense `sample_grid` with the same band gives).
+template <class T> py::array to_dense_as(const SparseGrid<T>& g) {
+  const GridSpec<T>& spec = g.spec;
+  require_memory(bytes_of(spec.size(), sizeof(T)), grid_name(spec),
+                 "a dense copy of this band does not fit; read the kept tiles (blocks, values) "
+                 "instead");
+  py::array_t<T> out({py::ssize_t(spec.nz()), py::ssize_t(spec.ny()), py::ssize_t(spec.nx())});
+  T* o = out.mutable_data();
+  const std::size_t W = grid_tile, nx = spec.nx(), ny = spec.ny(), nz = spec.nz();
+  py::gil_scoped_release nogil;
+  for (std::size_t tz = 0; tz < g.tiles[2]; ++tz)
+    for (std::size_t ty = 0; ty < g.tiles[1]; ++ty)
+      for (std::size_t tx = 0; tx < g.tiles[0]; ++tx) {
+        const std::int32_t c = g.tile_code[tx + g.tiles[0] * (ty + g.tiles[1] * tz)];
+        const T fill = c == SparseGrid<T>::inside ? -g.band : g.band;
+        const T* v = c >= 0 ? g.values.data() + std::size_t(c) * W * W * W : nullptr;
+        for (std::size_t z = 0; z < W && tz * W + z < nz; ++z)
+          for (std::size_t y = 0; y < W && ty * W + y < ny; ++y) {
+            T* row = o + tx * W + nx * (ty * W + y + ny * (tz * W + z));
+            const std::size_t n = std::min(W, nx - tx * W);
+            for (std::size_t x = 0; x < n; ++x) row[x] = v ? v[x + W * (y + W * z)] : fill;
+          }
+      }
+  return std::move(out);
+}
+
+/// Writes a sparse grid as `ebgeom sdf -o OUT.npz --band W` does.
+void save_sparse_py(const Sparse& s, const std::string& path) {
+  if (!cli::is_npz_path(path))
+    throw py::value_error(
+        path + (path.size() > 4 && path.compare(path.size() - 4, 4, ".vdb") == 0
+                    ? ": the Python package does not write OpenVDB files; save the band as .npz, "
+                      "or write the level set with the command-line tool (ebgeom sdf INPUT -o "
+                      "OUT.vdb --band W)"
+                    : ": a sparse grid is saved as .npz (the narrow band's tiles); for .vti, "
+                      ".npy or .raw save to_dense()"));
+  Result<std::uint64_t> ok = std::uint64_t(0);
+  {
+    py::gil_scoped_release nogil;
+    ok = s.visit([&](const auto& g) { return cli::write_sparse_npz(path, g); });
+  }
+  if (!ok) {
+    PyErr_SetString(ok.error().code == ErrorCode::io ? PyExc_OSError : PyExc_ValueError,
+                    ok.error().what().c_str());
+    throw py::error_already_set();
+  }
+}
+
+/// Writes a (NZ, NY, NX) grid with the CLI's writers (.vti, .npy, .raw + .json, dense .npz).
 template <class T>
 void save_grid_as(const std::string& path, const CArr<T>& v, const std::vector<double>& box,
                   const std::string& centering) {
@@ -541,7 +722,13 @@ void save_grid_as(const std::string& path, const CArr<T>& v, const std::vector<d
   Result<Ok> ok = Ok{};
   {
     py::gil_scoped_release nogil;
-    ok = write_grid(path, spec, Span<const T>(v.data(), spec.size()), w);
+    const Span<const T> values(v.data(), spec.size());
+    if (cli::is_npz_path(path)) {
+      auto written = cli::write_dense_npz(path, spec, values);
+      if (!written) ok = written.error();
+    } else {
+      ok = write_grid(path, spec, values, w);
+    }
   }
   if (!ok) {
     if (ok.error().code == ErrorCode::io) {
@@ -611,11 +798,18 @@ PYBIND11_MODULE(_ebgeom, m) {
 
   py::class_<Mesh, std::shared_ptr<Mesh>>(m, "Mesh")
       .def(py::init(&mesh_from_arrays), py::arg("vertices"), py::arg("faces"))
-      .def_property_readonly("path", [](const Mesh& s) { return s.path; })
-      .def_property_readonly("vertex_count", [](const Mesh& s) { return s.soup.vertex_count(); })
-      .def_property_readonly("face_count", [](const Mesh& s) { return s.soup.face_count(); })
-      .def_property_readonly("triangle_count",
-                             [](const Mesh& s) { return s.soup.triangle_count(); })
+      .def_property_readonly(
+          "path", [](const Mesh& s) { return s.path; },
+          "The file the mesh was read from; empty for a mesh built from arrays.")
+      .def_property_readonly(
+          "vertex_count", [](const Mesh& s) { return s.soup.vertex_count(); },
+          "Number of vertices (unused ones included).")
+      .def_property_readonly(
+          "face_count", [](const Mesh& s) { return s.soup.face_count(); },
+          "Number of faces (polygons of 3 or more corners).")
+      .def_property_readonly(
+          "triangle_count", [](const Mesh& s) { return s.soup.triangle_count(); },
+          "Number of triangles once each face is fan-triangulated (what the SDF uses).")
       .def_property_readonly(
           "vertices",
           [](const Mesh& s) {
@@ -623,21 +817,28 @@ PYBIND11_MODULE(_ebgeom, m) {
             std::memcpy(v.mutable_data(), s.soup.vertices.data(),
                         s.soup.vertices.size() * sizeof(Vec3<double>));
             return v;
-          })
-      .def_property_readonly("indices",
-                             [](const Mesh& s) {
-                               py::array_t<std::int64_t> v(py::ssize_t(s.soup.indices.size()));
-                               for (std::size_t i = 0; i < s.soup.indices.size(); ++i)
-                                 v.mutable_data()[i] = s.soup.indices[i];
-                               return v;
-                             })
-      .def_property_readonly("offsets",
-                             [](const Mesh& s) {
-                               py::array_t<std::int64_t> v(py::ssize_t(s.soup.offsets.size()));
-                               for (std::size_t i = 0; i < s.soup.offsets.size(); ++i)
-                                 v.mutable_data()[i] = s.soup.offsets[i];
-                               return v;
-                             })
+          },
+          "(V, 3) float64 vertex positions (a new array on each access).")
+      .def_property_readonly(
+          "indices",
+          [](const Mesh& s) {
+            py::array_t<std::int64_t> v(py::ssize_t(s.soup.indices.size()));
+            for (std::size_t i = 0; i < s.soup.indices.size(); ++i)
+              v.mutable_data()[i] = s.soup.indices[i];
+            return v;
+          },
+          "int64 vertex indices of every face, one after the other (see "
+          "offsets).")
+      .def_property_readonly(
+          "offsets",
+          [](const Mesh& s) {
+            py::array_t<std::int64_t> v(py::ssize_t(s.soup.offsets.size()));
+            for (std::size_t i = 0; i < s.soup.offsets.size(); ++i)
+              v.mutable_data()[i] = s.soup.offsets[i];
+            return v;
+          },
+          "int64, face_count + 1 values: face f is "
+          "indices[offsets[f]:offsets[f + 1]].")
       .def("info", &mesh_info,
            "The validation report as a dict with the fields of `ebgeom info --json`: vertices,\n"
            "faces, triangles, edges, boundary_edges, holes, non_manifold_edges,\n"
@@ -713,6 +914,50 @@ PYBIND11_MODULE(_ebgeom, m) {
            py::arg("out") = py::none())
       .def("query", &sdf_query, py::arg("points"), py::arg("threads") = 0);
 
+  py::class_<Sparse>(m, "SparseGrid")
+      .def_property_readonly("precision", [](const Sparse& s) { return s.d ? "double" : "float"; })
+      .def_property_readonly("blocks",
+                             [](const py::object& self) {
+                               return self.cast<const Sparse&>().visit([&](const auto& g) {
+                                 return view_of(
+                                     self, reinterpret_cast<const std::uint32_t*>(g.blocks.data()),
+                                     {py::ssize_t(g.blocks.size()), 3});
+                               });
+                             })
+      .def_property_readonly(
+          "values",
+          [](const py::object& self) {
+            return self.cast<const Sparse&>().visit([&](const auto& g) {
+              const py::ssize_t W = grid_tile;
+              return view_of(self, g.values.data(), {py::ssize_t(g.blocks.size()), W, W, W});
+            });
+          })
+      .def_property_readonly("tile_code",
+                             [](const py::object& self) {
+                               return self.cast<const Sparse&>().visit([&](const auto& g) {
+                                 return view_of(self, g.tile_code.data(),
+                                                {py::ssize_t(g.tiles[2]), py::ssize_t(g.tiles[1]),
+                                                 py::ssize_t(g.tiles[0])});
+                               });
+                             })
+      .def_property_readonly(
+          "memory_bytes",
+          [](const Sparse& s) { return s.visit([](const auto& g) { return g.memory_bytes(); }); })
+      .def("to_dense",
+           [](const Sparse& s) {
+             return s.visit([](const auto& g) { return py::object(to_dense_as(g)); });
+           })
+      .def("save", &save_sparse_py, py::arg("path"));
+
+  m.def(
+      "_points_address",
+      [](const Sdf& s, const py::handle& points) {
+        return s.is_double() ? std::uintptr_t(as_points<double>(points).data())
+                             : std::uintptr_t(as_points<float>(points).data());
+      },
+      py::arg("sdf"), py::arg("points"),
+      "The address of the buffer a query reads `points` from (the tests check the no-copy "
+      "promise with it).");
   m.def(
       "_time_cpp_eval",
       [](const Sdf& s, const py::handle& points, int threads) {
@@ -726,6 +971,12 @@ PYBIND11_MODULE(_ebgeom, m) {
         py::arg("precision") = "float", py::arg("from_file") = false);
   m.def("sample_grid", &sample_grid_py, py::arg("sdf"), py::arg("box"), py::arg("res"),
         py::arg("dx"), py::arg("pad"), py::arg("band"), py::arg("nodes"), py::arg("threads"));
+  m.def("sample_sparse", &sample_sparse_py, py::arg("sdf"), py::arg("box"), py::arg("res"),
+        py::arg("dx"), py::arg("pad"), py::arg("band"), py::arg("nodes"), py::arg("threads"));
+  m.def("grid_size", &grid_size_py, py::arg("sdf"), py::arg("box"), py::arg("res"), py::arg("dx"),
+        py::arg("pad"), py::arg("nodes"));
+  m.def("available_memory", &cli::available_memory_bytes,
+        "Bytes of memory available to this process (0 when unknown), as the CLI reads it.");
   m.def("save_grid", &save_grid_py, py::arg("path"), py::arg("values"), py::arg("box"),
         py::arg("centering"));
   (void)value_error;
