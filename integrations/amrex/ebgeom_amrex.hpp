@@ -9,11 +9,20 @@
 /// #include "ebgeom_amrex.hpp"
 ///
 /// auto mesh = ebgeom::read_shared_mesh_sdf<double>("part.stl").value();  // built once
-/// ebgeom::AmrexImplicitFunction<ebgeom::MeshSdf<double>> f(mesh);         // fluid outside
-/// auto gshop = amrex::EB2::makeShop(f);                                   // copies f: cheap
+/// auto soup = ebgeom::io::read_mesh<double>("part.stl").value();           // read the file
+/// auto mesh = ebgeom::make_shared_mesh_sdf(soup).value();                  // built once
+/// ebgeom::AmrexImplicitFunction<ebgeom::SignedMeshSdf<double>> f(mesh);    // fluid outside
+/// auto gshop = amrex::EB2::makeShop(f);     // copies f: cheap (or make_amrex_shop, below)
 /// amrex::EB2::Build(gshop, geom, required_coarsening_level, max_coarsening_level);
 /// ```
 /// Any ebgeom SDF works (mesh, analytic shape, CSG tree, `BvhUnion`, `AnySdf`).
+///
+/// `ebgeom::make_amrex_shop(f)` (ebgeom_amrex_shop.hpp) gives an `AmrexGeometryShop`: AMReX's own
+/// `EB2::GeometryShop` with two of its whole-box steps done by ebgeom (same results, bit for bit):
+/// the box classification
+/// (`getBoxType`: one evaluation proves a box far from the surface all fluid or all covered) and
+/// the level-set fill (`fillFab`: a mesh's nodes evaluated in 8^3 tiles, one BVH search per tile).
+/// The cut-edge root finding stays AMReX's, through the per-point call.
 ///
 /// - Sign: AMReX reads value > 0 as body, = 0 as boundary, < 0 as fluid. The adapter returns -S
 ///   when the fluid is outside the object (`FluidSide::outside`, the default) and +S when it is
@@ -52,7 +61,7 @@ template <class S> class AmrexImplicitFunction {
 
   /// Takes the geometry by value (moved into shared storage).
   explicit AmrexImplicitFunction(S sdf, const EbOptions& opt = {}) : f_(std::move(sdf), opt) {}
-  /// Shares a geometry built once (e.g. `read_shared_mesh_sdf`). Precondition: not null.
+  /// Shares a geometry built once (e.g. `make_shared_mesh_sdf`). Precondition: not null.
   explicit AmrexImplicitFunction(std::shared_ptr<const S> sdf, const EbOptions& opt = {})
       : f_(std::move(sdf), opt) {}
   explicit AmrexImplicitFunction(EbFunction<S> f) : f_(std::move(f)) {}

@@ -205,3 +205,49 @@ TEST(Adapters, ConcurrentCallsMatchSerialWithCsgScene) {
   using Scene = decltype(csg_scene());
   expect_threads_match_serial(std::make_shared<const Scene>(csg_scene()));
 }
+
+// Chombo's GeometryShop asks the function's box hook first; the adapter's answer (one evaluation
+// for a box far from the surface, else its nodes) must be the shop's own node-by-node answer, for
+// single cells (what fillGraph asks) and larger boxes, on both fluid sides and with NaN signs.
+template <class S>
+void expect_inside_outside_equals_every_node(std::shared_ptr<const S> sdf, const EbOptions& opt,
+                                             bool expect_fast) {
+  const ebgeom::ChomboImplicitFunction<S> f(sdf, opt);
+  const GeometryShop shop(f, 0);
+  const ProblemDomain domain;
+  const double origin_xyz[3] = {-1.05, -1.1, -0.95};
+  RealVect origin = real_vect(origin_xyz[0], origin_xyz[1], origin_xyz[2]);
+  const Real dx = 2.2 / 20;
+  EXPECT_EQ(f.fastIntersection(Box(), domain, origin, dx), expect_fast);
+  int seen[3] = {0, 0, 0};
+  for (int size : {1, 2, 5}) {
+    const int kmax = dim == 3 ? 20 - size : 0;
+    for (int k = 0; k <= kmax; k += size)
+      for (int j = 0; j <= 20 - size; j += size)
+        for (int i = 0; i <= 20 - size; i += size) {
+#if CH_SPACEDIM == 2
+          const Box region(IntVect(i, j), IntVect(i + size - 1, j + size - 1));
+#else
+          const Box region(IntVect(i, j, k), IntVect(i + size - 1, j + size - 1, k + size - 1));
+#endif
+          const auto fast = shop.InsideOutside(region, domain, origin, dx);
+          const auto slow = shop.InsideOutsideEveryNode(region, origin, dx);
+          ASSERT_EQ(fast, slow) << "cells from (" << i << ", " << j << ", " << k << "), size "
+                                << size;
+          ++seen[int(slow)];
+        }
+  }
+  EXPECT_GT(seen[GeometryService::Regular], 0);
+  EXPECT_GT(seen[GeometryService::Covered], 0);
+  EXPECT_GT(seen[GeometryService::Irregular], 0);
+}
+
+TEST(Adapters, ChomboInsideOutsideEqualsGeometryShopsNodeRule) {
+  const auto mesh = icosphere_sdf<double>(); // closed: the pseudonormal sign, an exact SDF
+  expect_inside_outside_equals_every_node(mesh, EbOptions{}, true);
+  expect_inside_outside_equals_every_node(mesh, EbOptions{FluidSide::inside, 0.2}, true);
+  expect_inside_outside_equals_every_node(icosphere_sdf<float>(2), EbOptions{}, true);
+  using Scene = decltype(csg_scene());
+  expect_inside_outside_equals_every_node(std::make_shared<const Scene>(csg_scene()),
+                                          EbOptions{FluidSide::inside, 0.0}, true);
+}

@@ -21,7 +21,11 @@
 // Other parameters (prefix `mesh_sdf.`): n_cell (64), max_grid_size (32), fluid_inside (0: flow
 // around the object, EBGeometry's flipSign = true; 1: flow inside it, EBGeometry's examples'
 // flipSign = false), z_slice (the plane a 2D build cuts through the 3D geometry; default 0, or
-// the sphere's centre for the sphere presets), max_coarsening_level (0), plotfile ("plt").
+// the sphere's centre for the sphere presets), max_coarsening_level (0), plotfile ("plt"),
+// eb_shop ("ebgeom": ebgeom::make_amrex_shop, whose whole-box steps ebgeom evaluates a box at a
+// time; "amrex": amrex::EB2::makeShop, every node through the per-point call; the same EB),
+// profile (1: build the EB once more with the geometry wrapped in ebgeom::TimedSdf and print the
+// points evaluated per cell and the time inside ebgeom against AMReX's own work).
 //
 // AMReX stops with "Domain is completely covered" when no cell is fluid (e.g. a 2D slice that
 // misses the object while the fluid is inside it) and with "more than 2 cuts not supported" when
@@ -30,9 +34,11 @@
 
 // ebgeom (first: its headers must not see macros from AMReX)
 #include "ebgeom/adapters/shared_mesh_sdf.hpp"
+#include "ebgeom/adapters/timed_sdf.hpp"
+#include "ebgeom/io/read_mesh.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/sdf/shapes.hpp"
-#include "ebgeom_amrex.hpp"
+#include "ebgeom_amrex_shop.hpp"
 
 // AMReX
 #include <AMReX.H>
@@ -47,10 +53,13 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -58,8 +67,8 @@ namespace {
 using T = double; // precision of the ebgeom geometry (AMReX's Real may differ)
 
 struct Params {
-  std::string which_geom = "sphere", file, plotfile = "plt";
-  int n_cell = 64, max_grid_size = 32, fluid_inside = 0, max_coarsening_level = 0;
+  std::string which_geom = "sphere", file, plotfile = "plt", eb_shop = "ebgeom";
+  int n_cell = 64, max_grid_size = 32, fluid_inside = 0, max_coarsening_level = 0, profile = 0;
   double padding = 0.1, z_slice = 0.0, sphere_radius = 0.3;
   bool z_slice_given = false;
   std::vector<double> prob_lo, prob_hi;
@@ -121,17 +130,28 @@ void check_not_all_covered(const F& f, const amrex::Geometry& geom, int n_cell, 
   }
 }
 
-// Builds the EB for implicit function `f`, prints the cut cells and the fluid volume, and
-// writes the plotfile. The same code for ebgeom's and AMReX's own functions.
-template <class F> void run(const F& f, const amrex::Geometry& geom, const Params& prm) {
-  check_not_all_covered(f, geom, prm.n_cell, prm);
+template <class F> struct is_ebgeom_function : std::false_type {};
+template <class S> struct is_ebgeom_function<ebgeom::AmrexImplicitFunction<S>> : std::true_type {};
 
-  // AMReX's aborts become exceptions here, so a multiple-cut abort can be explained (outside
-  // OpenMP regions; with OpenMP the abort message stands on its own).
+// EB2::Build for `f` through ebgeom's shop (ebgeom's functions, unless eb_shop = amrex) or AMReX's
+// own; returns the seconds it took. AMReX's aborts become exceptions here, so a multiple-cut abort
+// can be explained (outside OpenMP regions; with OpenMP the abort message stands on its own).
+template <class F> double build_eb(const F& f, const amrex::Geometry& geom, const Params& prm) {
+  const auto t0 = std::chrono::steady_clock::now();
   amrex::system::throw_exception = true;
   try {
-    auto gshop = amrex::EB2::makeShop(f); // copies f: for ebgeom, one shared pointer
-    amrex::EB2::Build(gshop, geom, 0, prm.max_coarsening_level);
+    if constexpr (is_ebgeom_function<F>::value) {
+      if (prm.eb_shop == "ebgeom") {
+        const auto gshop = ebgeom::make_amrex_shop(f); // copies f: one shared pointer
+        amrex::EB2::Build(gshop, geom, 0, prm.max_coarsening_level);
+      } else {
+        const auto gshop = amrex::EB2::makeShop(f);
+        amrex::EB2::Build(gshop, geom, 0, prm.max_coarsening_level);
+      }
+    } else {
+      const auto gshop = amrex::EB2::makeShop(f);
+      amrex::EB2::Build(gshop, geom, 0, prm.max_coarsening_level);
+    }
   } catch (const std::exception& e) {
     const std::string what = e.what();
     amrex::Print() << "mesh_sdf: AMReX stopped: " << what << "\n";
@@ -144,6 +164,42 @@ template <class F> void run(const F& f, const amrex::Geometry& geom, const Param
     amrex::Abort("mesh_sdf: EB2::Build failed (see the message above)");
   }
   amrex::system::throw_exception = false;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Builds the EB once more with the geometry wrapped in ebgeom::TimedSdf: points evaluated per
+// cell, time inside ebgeom, and the rest (AMReX's own work).
+template <class F> void profile_eb(const F& f, const amrex::Geometry& geom, const Params& prm) {
+  if constexpr (is_ebgeom_function<F>::value) {
+    using S = typename F::sdf_type;
+    auto times = std::make_shared<ebgeom::SdfTimes>();
+    const ebgeom::AmrexImplicitFunction<ebgeom::TimedSdf<S>> g(
+        ebgeom::TimedSdf<S>(f.function().shared_sdf(), times), f.function().options());
+    const double total = build_eb(g, geom, prm);
+    double cells = 1;
+    for (int d = 0; d < AMREX_SPACEDIM; ++d) cells *= geom.Domain().length(d);
+    amrex::Print() << "mesh_sdf: profile (" << prm.eb_shop << " shop): EB build " << total
+                   << " s, of which ebgeom " << times->seconds() << " s and AMReX "
+                   << total - times->seconds() << " s; " << times->points() << " points ("
+                   << double(times->points()) / cells << " per cell: " << times->calls
+                   << " per-point calls, " << times->lattice_points << " in "
+                   << times->lattice_calls << " tiles), "
+                   << 1e6 * times->seconds() / double(std::max<std::uint64_t>(1, times->points()))
+                   << " us per point\n";
+  } else {
+    (void)f, (void)geom, (void)prm;
+  }
+}
+
+// Builds the EB for implicit function `f`, prints the cut cells and the fluid volume, and
+// writes the plotfile. The same code for ebgeom's and AMReX's own functions.
+template <class F> void run(const F& f, const amrex::Geometry& geom, const Params& prm) {
+  check_not_all_covered(f, geom, prm.n_cell, prm);
+  if (prm.profile) profile_eb(f, geom, prm);
+  const double seconds = build_eb(f, geom, prm);
+  amrex::Print() << "mesh_sdf: EB built in " << seconds << " s ("
+                 << (is_ebgeom_function<F>::value ? prm.eb_shop : std::string("amrex"))
+                 << " shop)\n";
 
   amrex::BoxArray ba(geom.Domain());
   ba.maxSize(prm.max_grid_size);
@@ -218,6 +274,8 @@ int main(int argc, char* argv[]) {
       pp.query("sphere_radius", prm.sphere_radius);
       pp.query("max_coarsening_level", prm.max_coarsening_level);
       pp.query("plotfile", prm.plotfile);
+      pp.query("eb_shop", prm.eb_shop);
+      pp.query("profile", prm.profile);
       pp.queryarr("prob_lo", prm.prob_lo);
       pp.queryarr("prob_hi", prm.prob_hi);
     }
@@ -257,22 +315,30 @@ int main(int argc, char* argv[]) {
         amrex::Abort("mesh_sdf: unknown which_geom '" + prm.which_geom +
                      "' (expected sphere, amrex_sphere, mesh, airfoil, dodecahedron or armadillo)");
       if (preset && prm.file.empty()) prm.file = preset->default_file;
-      ebgeom::Result<ebgeom::SharedMeshSdf<T>> made =
-          prm.file.empty()
-              ? ebgeom::make_shared_mesh_sdf(ebgeom::make_icosphere<T>(4, T(1)).value())
-              : ebgeom::read_shared_mesh_sdf<T>(prm.file);
+      // The mesh: read (any format io::read_mesh knows), then built once with the library's
+      // default sign (automatic: pseudonormal on a closed mesh, winding number otherwise).
+      ebgeom::PolygonSoup<T> soup;
+      if (prm.file.empty()) {
+        soup = ebgeom::make_icosphere<T>(4, T(1)).value();
+      } else {
+        auto read = ebgeom::io::read_mesh<T>(prm.file);
+        if (!read) amrex::Abort("mesh_sdf: " + read.error().what());
+        soup = std::move(*read);
+      }
+      ebgeom::Result<ebgeom::SharedMeshSdf<T>> made = ebgeom::make_shared_mesh_sdf(soup);
       if (!made) amrex::Abort("mesh_sdf: " + made.error().what());
       const ebgeom::SharedMeshSdf<T> mesh = *made;
       amrex::Print() << "mesh_sdf: " << (prm.file.empty() ? std::string("icosphere") : prm.file)
                      << ", " << mesh->triangle_count() << " triangles, "
-                     << mesh->memory_bytes() / 1024 << " KiB of SDF\n";
+                     << mesh->memory_bytes() / 1024 << " KiB of SDF, sign "
+                     << ebgeom::to_string(mesh->resolved_mode()) << " (" << mesh->reason() << ")\n";
       const amrex::RealBox rb = override_box(preset ? make_box(preset->lo, preset->hi)
                                                     : box_around(mesh->bounds(), prm.padding));
       const amrex::Geometry geom = make_geometry(rb, prm.n_cell);
       ebgeom::EbOptions opt;
       opt.fluid = prm.fluid_inside ? ebgeom::FluidSide::inside : ebgeom::FluidSide::outside;
       opt.z_slice = prm.z_slice;
-      const ebgeom::AmrexImplicitFunction<ebgeom::MeshSdf<T>> f(mesh, opt);
+      const ebgeom::AmrexImplicitFunction<ebgeom::SignedMeshSdf<T>> f(mesh, opt);
       run(f, geom, prm);
     }
   }

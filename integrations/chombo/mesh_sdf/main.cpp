@@ -22,7 +22,11 @@
 // Other parameters (prefix `mesh_sdf.`): grid_size (16), fluid_inside (0: flow around the
 // object, EBGeometry's flipSign = true; 1: flow inside it, EBGeometry's examples' flipSign =
 // false), z_slice (2D builds: the plane cut through the 3D geometry; default 0, or the sphere's
-// centre for the sphere presets), output ("mesh_sdf.hdf5").
+// centre for the sphere presets), output ("mesh_sdf.hdf5"), box_hook (1: the adapter classifies
+// GeometryShop's boxes itself, one evaluation for a box far from the surface; 0: a wrapper
+// without that hook, every node through `value`; the same EB), profile (1: build the index space
+// once more with the geometry wrapped in ebgeom::TimedSdf and print the points evaluated per cell
+// and the time inside ebgeom against Chombo's own work).
 //
 // Chombo builds an index space even when no cell is fluid (a 2D slice that misses the object
 // with the fluid inside it, say); this example then says so instead of writing an all-covered
@@ -30,6 +34,8 @@
 
 // ebgeom (first: its headers must not see macros from Chombo)
 #include "ebgeom/adapters/shared_mesh_sdf.hpp"
+#include "ebgeom/adapters/timed_sdf.hpp"
+#include "ebgeom/io/read_mesh.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/sdf/shapes.hpp"
 #include "ebgeom_chombo.hpp"
@@ -52,8 +58,12 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -62,7 +72,7 @@ using T = double; // precision of the ebgeom geometry (float halves a mesh's mem
 
 struct Params {
   std::string which_geom = "sphere", file, output = "mesh_sdf.hdf5";
-  int n_cells = 64, grid_size = 16, fluid_inside = 0;
+  int n_cells = 64, grid_size = 16, fluid_inside = 0, box_hook = 1, profile = 0;
   Real padding = 0.1, z_slice = 0.0, sphere_radius = 0.3;
   bool z_slice_given = false;
   std::vector<Real> prob_lo, prob_hi;
@@ -93,25 +103,94 @@ DomainBox cube_around(const ebgeom::Aabb<T>& b, double padding) {
   return {{c[0] - half, c[1] - half, c[2] - half}, {c[0] + half, c[1] + half, c[2] + half}};
 }
 
+// Forwards `value` only, without the adapter's box hook: GeometryShop then evaluates every node
+// itself (mesh_sdf.box_hook = 0, to compare).
+class PointwiseIF : public BaseIF {
+ public:
+  explicit PointwiseIF(const BaseIF& f) : m_f(f.newImplicitFunction()) {}
+  using BaseIF::value;
+  Real value(const RealVect& a_point) const override { return m_f->value(a_point); }
+  BaseIF* newImplicitFunction() const override { return new PointwiseIF(*m_f); }
+
+ private:
+  std::unique_ptr<BaseIF> m_f;
+};
+
+struct Grid {
+  ProblemDomain domain;
+  RealVect lo_corner;
+  Real dx = 1;
+};
+
+Grid make_grid(const DomainBox& box, const Params& prm) {
+  double longest = 0;
+  for (int d = 0; d < SpaceDim; ++d) longest = std::max(longest, box.hi[d] - box.lo[d]);
+  Grid g;
+  g.dx = Real(longest / prm.n_cells);
+  IntVect hi_cell;
+  for (int d = 0; d < SpaceDim; ++d) {
+    g.lo_corner[d] = Real(box.lo[d]);
+    hi_cell[d] = std::max(1, int(std::lround((box.hi[d] - box.lo[d]) / g.dx))) - 1;
+  }
+  g.domain = ProblemDomain(IntVect::Zero, hi_cell);
+  return g;
+}
+
+// EBIndexSpace::define for `f` (or its PointwiseIF when box_hook = 0); returns the seconds taken.
+double define_ebis(const BaseIF& f, const Grid& g, const Params& prm) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // GeometryShop clones the function (newImplicitFunction): for ebgeom, one shared pointer.
+  if (prm.box_hook) {
+    const GeometryShop workshop(f, 0, g.dx * RealVect::Unit);
+    Chombo_EBIS::instance()->define(g.domain, g.lo_corner, g.dx, workshop, prm.grid_size, -1);
+  } else {
+    const PointwiseIF pointwise(f);
+    const GeometryShop workshop(pointwise, 0, g.dx * RealVect::Unit);
+    Chombo_EBIS::instance()->define(g.domain, g.lo_corner, g.dx, workshop, prm.grid_size, -1);
+  }
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+template <class F> struct is_ebgeom_function : std::false_type {};
+template <class S> struct is_ebgeom_function<ebgeom::ChomboImplicitFunction<S>> : std::true_type {};
+
+// Defines the index space once more with the geometry wrapped in ebgeom::TimedSdf: points
+// evaluated per cell, time inside ebgeom, and the rest (Chombo's own work).
+template <class F> void profile_ebis(const F& f, const Grid& g, const Params& prm) {
+  if constexpr (is_ebgeom_function<F>::value) {
+    using S = typename F::sdf_type;
+    auto times = std::make_shared<ebgeom::SdfTimes>();
+    const ebgeom::ChomboImplicitFunction<ebgeom::TimedSdf<S>> timed(
+        ebgeom::TimedSdf<S>(f.function().shared_sdf(), times), f.function().options());
+    const double total = define_ebis(timed, g, prm);
+    Chombo_EBIS::instance()->clear();
+    const double cells = double(g.domain.domainBox().numPts());
+    pout() << "mesh_sdf: profile (box_hook " << prm.box_hook << "): EBIndexSpace::define " << total
+           << " s, of which ebgeom " << times->seconds() << " s and Chombo "
+           << total - times->seconds() << " s; " << times->points() << " points ("
+           << double(times->points()) / cells << " per cell: " << times->calls
+           << " per-point calls, " << times->lattice_points << " in " << times->lattice_calls
+           << " tiles), "
+           << 1e6 * times->seconds() / double(std::max<unsigned long long>(1, times->points()))
+           << " us per point" << std::endl;
+  } else {
+    (void)f, (void)g, (void)prm;
+  }
+}
+
 // Builds the EB index space for the Chombo implicit function `f`, prints the cut cells and the
 // fluid volume, and writes the function at cell centres. The same code for ebgeom's and
 // Chombo's own functions.
-void run(const BaseIF& f, const DomainBox& box, const Params& prm) {
-  double longest = 0;
-  for (int d = 0; d < SpaceDim; ++d) longest = std::max(longest, box.hi[d] - box.lo[d]);
-  const Real dx = Real(longest / prm.n_cells);
-  RealVect lo_corner;
-  IntVect hi_cell;
-  for (int d = 0; d < SpaceDim; ++d) {
-    lo_corner[d] = Real(box.lo[d]);
-    hi_cell[d] = std::max(1, int(std::lround((box.hi[d] - box.lo[d]) / dx))) - 1;
-  }
-  const ProblemDomain domain(IntVect::Zero, hi_cell);
-
-  // GeometryShop clones the function (newImplicitFunction): for ebgeom, one shared pointer.
-  const GeometryShop workshop(f, 0, dx * RealVect::Unit);
+template <class F> void run(const F& f, const DomainBox& box, const Params& prm) {
+  const Grid g = make_grid(box, prm);
+  const ProblemDomain& domain = g.domain;
+  const RealVect& lo_corner = g.lo_corner;
+  const Real dx = g.dx;
+  if (prm.profile) profile_ebis(f, g, prm);
+  const double seconds = define_ebis(f, g, prm);
+  pout() << "mesh_sdf: EB index space built in " << seconds << " s (box_hook "
+         << (is_ebgeom_function<F>::value ? prm.box_hook : 0) << ")" << std::endl;
   EBIndexSpace* ebis = Chombo_EBIS::instance();
-  ebis->define(domain, lo_corner, dx, workshop, prm.grid_size, -1);
 
   Vector<int> procs;
   Vector<Box> boxes;
@@ -207,6 +286,8 @@ int main(int argc, char* argv[]) {
     pp.query("mesh_sdf.z_slice", prm.z_slice);
     pp.query("mesh_sdf.sphere_radius", prm.sphere_radius);
     pp.query("mesh_sdf.output", prm.output);
+    pp.query("mesh_sdf.box_hook", prm.box_hook);
+    pp.query("mesh_sdf.profile", prm.profile);
     if (pp.contains("mesh_sdf.prob_lo")) pp.queryarr("mesh_sdf.prob_lo", prm.prob_lo, 0, 3);
     if (pp.contains("mesh_sdf.prob_hi")) pp.queryarr("mesh_sdf.prob_hi", prm.prob_hi, 0, 3);
     const bool box_given = prm.prob_lo.size() == 3 && prm.prob_hi.size() == 3;
@@ -246,17 +327,25 @@ int main(int argc, char* argv[]) {
              "' (expected sphere, chombo_sphere, mesh, airfoil, dodecahedron or armadillo)")
                 .c_str());
       if (preset && prm.file.empty()) prm.file = preset->default_file;
-      ebgeom::Result<ebgeom::SharedMeshSdf<T>> made =
-          prm.file.empty()
-              ? ebgeom::make_shared_mesh_sdf(ebgeom::make_icosphere<T>(4, T(1)).value())
-              : ebgeom::read_shared_mesh_sdf<T>(prm.file);
+      // The mesh: read (any format io::read_mesh knows), then built once with the library's
+      // default sign (automatic: pseudonormal on a closed mesh, winding number otherwise).
+      ebgeom::PolygonSoup<T> soup;
+      if (prm.file.empty()) {
+        soup = ebgeom::make_icosphere<T>(4, T(1)).value();
+      } else {
+        auto read = ebgeom::io::read_mesh<T>(prm.file);
+        if (!read) MayDay::Error(("mesh_sdf: " + read.error().what()).c_str());
+        soup = std::move(*read);
+      }
+      ebgeom::Result<ebgeom::SharedMeshSdf<T>> made = ebgeom::make_shared_mesh_sdf(soup);
       if (!made) MayDay::Error(("mesh_sdf: " + made.error().what()).c_str());
       const ebgeom::SharedMeshSdf<T> mesh = *made;
       pout() << "mesh_sdf: " << (prm.file.empty() ? std::string("icosphere") : prm.file) << ", "
              << mesh->triangle_count() << " triangles, " << mesh->memory_bytes() / 1024
-             << " KiB of SDF" << std::endl;
+             << " KiB of SDF, sign " << ebgeom::to_string(mesh->resolved_mode()) << " ("
+             << mesh->reason() << ")" << std::endl;
       opt.z_slice = prm.z_slice;
-      const ebgeom::ChomboImplicitFunction<ebgeom::MeshSdf<T>> f(mesh, opt);
+      const ebgeom::ChomboImplicitFunction<ebgeom::SignedMeshSdf<T>> f(mesh, opt);
       run(f,
           override_box(preset ? DomainBox{preset->lo, preset->hi}
                               : cube_around(mesh->bounds(), prm.padding)),

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "eb_test_scenes.hpp"
+#include "ebgeom/adapters/timed_sdf.hpp"
 #include "ebgeom/sdf/any_sdf.hpp"
 #include "test_support.hpp"
 
@@ -168,4 +169,134 @@ TEST(EbFunction, MakeEbFunctionDeducesAndShares) {
   const Aabb<double> b = f.bounds();
   EXPECT_EQ(b.lo.z, 0.0);
   EXPECT_EQ(b.hi.z, 2.0);
+}
+
+namespace {
+
+// The lattice of nodes origin + i * dx that the EB codes evaluate, as they compute it.
+struct Lattice {
+  double origin[3] = {-1.23, -1.11, -1.37};
+  double dx[3] = {0.071, 0.083, 0.077};
+  double node(int d, int i) const { return origin[d] + double(i) * dx[d]; }
+};
+
+// Every node's value through the per-point call: the reference for node_values and node_signs.
+template <class S>
+std::vector<double> every_node(const EbFunction<S>& f, const Lattice& g, const int* lo,
+                               const int* hi, int dim) {
+  std::vector<double> v;
+  const int klo = dim == 3 ? lo[2] : 0, khi = dim == 3 ? hi[2] : 0;
+  for (int k = klo; k <= khi; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i)
+        v.push_back(dim == 3 ? f(g.node(0, i), g.node(1, j), g.node(2, k))
+                             : f(g.node(0, i), g.node(1, j)));
+  return v;
+}
+
+template <class S> void expect_box_paths_equal_points(const EbFunction<S>& f) {
+  const Lattice g;
+  // Boxes of odd sizes (not multiples of the 8^3 tiles), some far from the surface, some across.
+  const int boxes[][6] = {{0, 0, 0, 34, 34, 34}, {3, 5, 7, 12, 9, 30}, {-2, 14, 15, 20, 21, 22},
+                          {0, 0, 0, 0, 0, 0},    {30, 0, 0, 34, 6, 4}, {10, 10, 10, 26, 26, 26}};
+  int mixed = 0, uniform = 0;
+  for (int dim : {3, 2})
+    for (const auto& b : boxes) {
+      const int* lo = b;
+      const int* hi = b + 3;
+      const std::vector<double> ref = every_node(f, g, lo, hi, dim);
+      std::vector<double> got(ref.size(), -7.0);
+      f.node_values(g.origin, g.dx, lo, hi, dim, got.data());
+      ASSERT_EQ(got, ref) << "box " << lo[0] << ".." << hi[0] << ", dim " << dim;
+      EbSigns want;
+      for (const double v : ref) (v > 0 ? want.positive : want.negative) |= !(v == 0);
+      const EbSigns s = f.node_signs(g.origin, g.dx, lo, hi, dim);
+      EXPECT_EQ(s.positive, want.positive) << "box " << lo[0] << ".." << hi[0] << ", dim " << dim;
+      EXPECT_EQ(s.negative, want.negative) << "box " << lo[0] << ".." << hi[0] << ", dim " << dim;
+      (want.positive && want.negative ? mixed : uniform)++;
+      // A proved box has that sign at every node; a box with both signs is never proved.
+      double blo[3], bhi[3];
+      for (int d = 0; d < 3; ++d) {
+        blo[d] = g.node(d, lo[d]);
+        bhi[d] = g.node(d, hi[d]);
+      }
+      const int sign = f.box_sign(blo, bhi, dim);
+      for (const double v : ref) {
+        if (sign > 0) {
+          EXPECT_GT(v, 0);
+        }
+        if (sign < 0) {
+          EXPECT_LT(v, 0);
+        }
+      }
+    }
+  EXPECT_GT(mixed, 0);
+  EXPECT_GT(uniform, 0);
+}
+
+} // namespace
+
+TEST(EbFunction, BoxPathsEqualThePerPointCalls) {
+  // A mesh (through eval_lattice) and closed forms (per point), on both fluid sides and slices.
+  const auto mesh = adapter_test::icosphere_sdf<double>();
+  expect_box_paths_equal_points(make_eb_function(mesh));
+  expect_box_paths_equal_points(make_eb_function(mesh, EbOptions{FluidSide::inside, 0.3}));
+  expect_box_paths_equal_points(make_eb_function(adapter_test::icosphere_sdf<float>(2)));
+  expect_box_paths_equal_points(EbFunction<Ball<double>>(Ball<double>{{0.1, -0.2, 0.3}}));
+  expect_box_paths_equal_points(make_eb_function(adapter_test::csg_scene()));
+}
+
+TEST(EbFunction, BoxProofsNeedADistanceBoundAndAValidSide) {
+  const auto mesh = adapter_test::icosphere_sdf<double>();
+  EXPECT_TRUE(make_eb_function(mesh).proves_boxes());
+  // The winding sign (an open mesh, or asked for) is not a distance bound: no proof, every node.
+  SignOptions winding;
+  winding.mode = SignMode::fast_winding;
+  const auto wound = make_shared_mesh_sdf(make_icosphere<double>(3, 0.8).value(), winding).value();
+  const auto fw = make_eb_function(wound);
+  EXPECT_FALSE(fw.proves_boxes());
+  const double lo[3] = {2, 2, 2}, hi[3] = {3, 3, 3};
+  EXPECT_EQ(fw.box_sign(lo, hi, 3), 0);
+  expect_box_paths_equal_points(fw);
+  // A FluidSide outside the enum gives NaN values: never proved, every NaN counted as fluid.
+  const auto nan_side = make_eb_function(mesh, EbOptions{static_cast<FluidSide>(7), 0.0});
+  EXPECT_FALSE(nan_side.proves_boxes());
+  const Lattice g;
+  const int ilo[3] = {0, 0, 0}, ihi[3] = {9, 9, 9};
+  const EbSigns s = nan_side.node_signs(g.origin, g.dx, ilo, ihi, 3);
+  EXPECT_TRUE(s.negative);
+  EXPECT_FALSE(s.positive);
+  // Far from the object one evaluation proves a big box: fluid outside, covered inside.
+  const auto f = make_eb_function(mesh);
+  const double far_lo[3] = {1.5, 1.5, 1.5}, far_hi[3] = {3, 3, 3};
+  EXPECT_EQ(f.box_sign(far_lo, far_hi, 3), -1);
+  const double in_lo[3] = {-0.2, -0.2, -0.2}, in_hi[3] = {0.2, 0.2, 0.2};
+  EXPECT_EQ(f.box_sign(in_lo, in_hi, 3), 1);
+  const double across_lo[3] = {0.5, -0.1, -0.1}, across_hi[3] = {1.0, 0.1, 0.1};
+  EXPECT_EQ(f.box_sign(across_lo, across_hi, 3), 0);
+}
+
+TEST(TimedSdf, ForwardsBitForBitAndCountsEveryPoint) {
+  const auto mesh = adapter_test::icosphere_sdf<double>();
+  auto times = std::make_shared<SdfTimes>();
+  const TimedSdf<SignedMeshSdf<double>> timed(mesh, times);
+  static_assert(has_lattice_eval_v<TimedSdf<SignedMeshSdf<double>>>);
+  static_assert(!has_lattice_eval_v<TimedSdf<Ball<double>>>);
+  EXPECT_EQ(kind_of(timed), SdfKind::exact); // the pseudonormal sign of a closed mesh
+  const auto plain = make_eb_function(mesh);
+  const auto f = make_eb_function(timed);
+  EXPECT_TRUE(f.proves_boxes());
+  const auto pts = test::random_points(probe_box, 100, 11);
+  for (const auto& p : pts) EXPECT_EQ(f(p.x, p.y, p.z), plain(p.x, p.y, p.z));
+  EXPECT_EQ(times->calls, pts.size());
+  const Lattice g;
+  const int lo[3] = {0, 0, 0}, hi[3] = {9, 8, 7}; // 720 nodes: 8 tiles of up to 8^3
+  std::vector<double> a(720), b(720);
+  f.node_values(g.origin, g.dx, lo, hi, 3, a.data());
+  plain.node_values(g.origin, g.dx, lo, hi, 3, b.data());
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(times->lattice_points, 720u);
+  EXPECT_EQ(times->lattice_calls, 4u); // x: 8 + 2, y: 8 + 1, z: 8
+  EXPECT_EQ(times->points(), pts.size() + 720);
+  EXPECT_GT(times->seconds(), 0.0);
 }

@@ -80,14 +80,14 @@ TEST(EbFunctionThreads, TwoDimensionalSliceUnderConcurrency) {
 }
 
 TEST(EbFunctionThreads, ConcurrentCopiesAndDestructionKeepTheGeometryAlive) {
-  auto f = std::make_unique<EbFunction<MeshSdf<double>>>(icosphere_sdf<double>());
+  auto f = std::make_unique<EbFunction<SignedMeshSdf<double>>>(icosphere_sdf<double>());
   const auto pts = points_in(probe_box, 200, 17);
   const auto serial = serial_values(*f, pts);
   const int n = test_threads();
   std::vector<int> mismatches(std::size_t(n), 0);
   on_threads(n, [&](int t) {
     for (int round = 0; round < 20; ++round) {
-      std::vector<EbFunction<MeshSdf<double>>> mine(8, *f); // copy concurrently
+      std::vector<EbFunction<SignedMeshSdf<double>>> mine(8, *f); // copy concurrently
       for (std::size_t i = 0; i < pts.size(); ++i)
         mismatches[std::size_t(t)] += mine[i % 8](pts[i].x, pts[i].y, pts[i].z) != serial[i];
     } // and destroy concurrently
@@ -95,7 +95,7 @@ TEST(EbFunctionThreads, ConcurrentCopiesAndDestructionKeepTheGeometryAlive) {
   for (int m : mismatches) EXPECT_EQ(m, 0);
   EXPECT_EQ(f->shared_sdf().use_count(), 1);
   // the last owner may be any adapter: the geometry outlives the original
-  const EbFunction<MeshSdf<double>> survivor = *f;
+  const EbFunction<SignedMeshSdf<double>> survivor = *f;
   f.reset();
   EXPECT_EQ(survivor(pts[0].x, pts[0].y, pts[0].z), serial[0]);
 }
