@@ -29,8 +29,6 @@
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
-#include "ebgeom/eval/evaluate.hpp"
-#include "ebgeom/eval/grid_blocks.hpp"
 #include "ebgeom/sdf/concepts.hpp"
 
 namespace ebgeom {
