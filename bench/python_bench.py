@@ -71,6 +71,8 @@ def main():
     print(f"  ebgeom C++ evaluate      {mc * 1e3:9.2f} ms  ({o.points / mc / 1e6:.2f} M points/s)")
     print(f"  ebgeom Python sdf(pts)   {mp * 1e3:9.2f} ms  ({o.points / mp / 1e6:.2f} M points/s)"
           f"  overhead {100 * (mp / mc - 1):+.1f}%")
+    print(f"  target (overhead <= 5% at 1M points): {'met' if mp <= 1.05 * mc else 'NOT met'}"
+          + ("" if o.points >= 1_000_000 else f" (at {o.points} points)"))
 
     # 2. Open3D
     try:

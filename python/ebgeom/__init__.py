@@ -7,7 +7,7 @@ Sign convention: S < 0 inside, S > 0 outside, |S| is the Euclidean distance to t
 Quick start::
 
     >>> import numpy as np, ebgeom
-    >>> mesh = ebgeom.read_mesh("bunny.obj")            # STL, PLY, OBJ or legacy VTK
+    >>> mesh = ebgeom.read_mesh("bunny.obj")            # STL, PLY, OBJ, OFF, VTK, glTF
     >>> sdf = ebgeom.MeshSdf(mesh)                       # sign="auto", precision="float"
     >>> sdf([[0.0, 0.0, 0.0]])                           # (N, 3) points -> (N,) distances
     >>> grid = ebgeom.sample_grid(sdf, res=128)          # the CLI's `ebgeom sdf --res 128`
@@ -83,13 +83,14 @@ Mesh.__repr__ = lambda self: (f"<ebgeom.Mesh {self.vertex_count} vertices, {self
 
 
 def read_mesh(path: PathLike) -> Mesh:
-    """Reads a mesh file: STL (ASCII/binary), PLY (ASCII/binary), OBJ or legacy VTK POLYDATA; the
-    format is detected from the content.
+    """Reads a mesh file: STL (ASCII/binary), PLY (ASCII/binary), OBJ, OFF (ASCII/binary) or
+    legacy VTK POLYDATA, the format detected from the content; or glTF 2.0 (.gltf, .glb: every
+    mesh instance of the scene with its node transforms applied, as the CLI reads it).
 
     Raises FileNotFoundError when the file does not exist, OSError when it cannot be read, and
     ``ebgeom.MeshFormatError`` (a ValueError) for a malformed file; its message names the file
     and the line (text) or byte offset (binary), and it carries ``path``, ``line``, ``byte`` and
-    ``code`` attributes.
+    ``code`` attributes (a glTF error names the element at fault; line and byte are 0).
 
     >>> m = ebgeom.read_mesh("bunny.obj")
     """

@@ -33,6 +33,7 @@
 #include "ebgeom/version.hpp"
 
 #include "common.hpp"
+#include "gltf/gltf.hpp"
 #include "mesh_input.hpp"
 #include "mesh_report.hpp"
 #include "npz.hpp"
@@ -56,11 +57,12 @@ PyObject* g_scene_error = nullptr; // ebgeom.SceneError(ValueError)
 
 struct ParseFailure {
   ebgeom::ParseError e;
+  std::string text; // the message; e.what() when empty
 };
 
 /// Raises the Python exception for a reader error: OSError for I/O, MeshFormatError otherwise
 /// (with attributes path, line, byte, code).
-[[noreturn]] void raise_parse_error(const ebgeom::ParseError& e) { throw ParseFailure{e}; }
+[[noreturn]] void raise_parse_error(const ebgeom::ParseError& e) { throw ParseFailure{e, {}}; }
 
 // ---- arrays -----------------------------------------------------------------------------------
 
@@ -118,7 +120,7 @@ struct Mesh {
   std::string path; // empty when built from arrays
 
   PolygonSoup<float> soup_float() const {
-    if (!path.empty()) {
+    if (!path.empty() && !cli::is_gltf_path(path)) {
       auto s = io::read_mesh<float>(path);
       if (s) return std::move(*s);
     }
@@ -146,7 +148,23 @@ std::shared_ptr<Mesh> read_mesh_py(const std::string& path) {
            py::error_already_set()));
   }
   std::optional<Result<PolygonSoup<double>, ebgeom::ParseError>> r;
-  {
+  if (cli::is_gltf_path(path)) { // glTF 2.0 through tinygltf, as the CLI reads it
+    std::string failed;
+    {
+      py::gil_scoped_release nogil;
+      try {
+        r.emplace(cli::read_gltf(path));
+      } catch (const cli::CliError& e) {
+        failed = e.what();
+      }
+    }
+    if (!failed.empty()) {
+      ebgeom::ParseError e;
+      e.code = cli::gltf_available() ? ErrorCode::syntax : ErrorCode::unsupported;
+      e.path = path;
+      throw ParseFailure{e, failed};
+    }
+  } else {
     py::gil_scoped_release nogil;
     r.emplace(io::read_mesh<double>(path));
   }
@@ -861,7 +879,8 @@ PYBIND11_MODULE(_ebgeom, m) {
             }
           },
           py::arg("path"), py::arg("ascii") = false,
-          "Writes the mesh; the format comes from the extension (.stl, .ply, .obj, .vtk), binary\n"
+          "Writes the mesh; the format comes from the extension (.stl, .ply, .obj, .off, .vtk), "
+          "binary\n"
           "unless ascii=True. OSError when the file cannot be written.");
 
   m.def(
@@ -872,8 +891,8 @@ PYBIND11_MODULE(_ebgeom, m) {
         } catch (const ParseFailure& f) {
           const ebgeom::ParseError& e = f.e;
           PyObject* type = e.code == ErrorCode::io ? PyExc_OSError : g_parse_error;
-          py::object exc =
-              py::reinterpret_steal<py::object>(PyObject_CallFunction(type, "s", e.what().c_str()));
+          py::object exc = py::reinterpret_steal<py::object>(
+              PyObject_CallFunction(type, "s", (f.text.empty() ? e.what() : f.text).c_str()));
           if (!exc) throw py::error_already_set();
           exc.attr("path") = e.path;
           exc.attr("line") = e.line;

@@ -465,3 +465,59 @@ def test_sample_points(sphere_mesh):
 def test_help_has_examples():
     assert "sign" in ebgeom.MeshSdf.__doc__ and ">>>" in ebgeom.MeshSdf.__doc__
     assert "info --json" in ebgeom.Mesh.info.__doc__
+
+
+# ---- glTF --------------------------------------------------------------------------------------
+
+
+def cube_gltf(buffer):
+    """A glTF scene: the cube [-1, 1]^3 (float positions, uint16 indices) at node 0, moved by
+    (10, 0, 0) and scaled by 2: the box [8, 12] x [-2, 2] x [-2, 2]."""
+    return {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0, "translation": [10, 0, 0], "scale": [2, 2, 2]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
+        "buffers": [buffer],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96},
+                        {"buffer": 0, "byteOffset": 96, "byteLength": 72}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+                       "min": [-1, -1, -1], "max": [1, 1, 1]},
+                      {"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"}],
+    }
+
+
+def test_gltf_and_glb(tmp_path, cli):
+    import base64
+    import struct
+    v, f = cube()
+    data = v.astype("<f4").tobytes() + f.astype("<u2").tobytes()
+    uri = "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+    (tmp_path / "cube.gltf").write_text(json.dumps(cube_gltf({"uri": uri,
+                                                               "byteLength": len(data)})))
+    js = json.dumps(cube_gltf({"byteLength": len(data)})).encode()
+    js += b" " * (-len(js) % 4)
+    glb = (b"glTF" + struct.pack("<II", 2, 12 + 8 + len(js) + 8 + len(data))
+           + struct.pack("<I", len(js)) + b"JSON" + js + struct.pack("<I", len(data)) + b"BIN\0"
+           + data)
+    (tmp_path / "cube.glb").write_bytes(glb)
+    p = RNG.uniform(5, 15, size=(500, 3)) - [0, 10, 10]
+    q = np.abs(p - [10, 0, 0]) - 2
+    ref = np.linalg.norm(np.maximum(q, 0), axis=1) + np.minimum(q.max(axis=1), 0)
+    np.save(tmp_path / "p.npy", p)
+    for name in ("cube.gltf", "cube.glb"):
+        m = ebgeom.read_mesh(tmp_path / name)
+        assert m.triangle_count == 12 and m.info()["watertight"]
+        np.testing.assert_array_equal(m.vertices, 2 * v + [10, 0, 0])
+        np.testing.assert_allclose(ebgeom.MeshSdf(m)(p), ref, atol=1e-5)
+        sdf = ebgeom.MeshSdf(tmp_path / name, precision="double")
+        np.testing.assert_allclose(sdf(p), ref, atol=1e-12)
+        out = tmp_path / "d.npy"  # the CLI's query (double) on the same file
+        subprocess.run([cli, "query", str(tmp_path / name), "--points", str(tmp_path / "p.npy"),
+                        "-o", str(out), "-q"], check=True)
+        np.testing.assert_array_equal(sdf(p), np.load(out))
+    bad = cube_gltf({"uri": uri, "byteLength": len(data)})
+    bad["accessors"][0]["componentType"] = 5121  # unsigned byte positions
+    (tmp_path / "bad.gltf").write_text(json.dumps(bad))
+    with pytest.raises(ebgeom.MeshFormatError, match="bad.gltf.*POSITION must be float VEC3") as e:
+        ebgeom.read_mesh(tmp_path / "bad.gltf")
+    assert e.value.path == str(tmp_path / "bad.gltf")
