@@ -41,7 +41,9 @@ namespace ebgeom {
 /// - Dense (`opt.band == 0`): `out[...] = sdf(spec.point(i, j, k))`, bit for bit.
 /// - Narrow band (`opt.band > 0`): samples with |S| <= band get S bit for bit; the others get
 ///   `opt.outside` (±band by default) with the sign of S. For `exact` and `bound` SDFs, blocks
-///   proven farther than the band are not evaluated, so the work follows the surface area.
+///   proven farther than the band are not evaluated, so the work follows the surface area; so
+///   are they for `implicit` SDFs with a split sign (`has_split_sign_v`: `SignedMeshSdf` with a
+///   winding sign), whose far blocks are signed by proof, each sample as the dense grid signs it.
 ///   Far samples' signs are decided from their neighbours when the band is at least the sample
 ///   spacing (exact for closed surfaces; a sign is the same as per-point evaluation's wherever
 ///   S's sign is well defined, i.e. not for open meshes).
@@ -64,9 +66,9 @@ Result<Ok> sample_grid_box(const S& sdf, const GridSpec<sdf_scalar_t<S>>& spec,
                       " samples but the output holds ", out.size());
 
   const detail::GridFrame<T> f(spec);
-  const detail::TileParams<T> prm = detail::tile_params(spec, opt);
-  const bool skip = opt.band > 0 && kind_of(sdf) != SdfKind::implicit;
-  detail::GridPlan<T> plan = detail::plan_grid(sdf, f, range, opt.band, skip, opt.exec);
+  const detail::TileParams<T> prm = detail::tile_params(sdf, spec, opt);
+  const bool skip = detail::skips_far_blocks(sdf, prm);
+  detail::GridPlan<T> plan = detail::plan_grid(sdf, f, range, prm, skip, opt.exec);
   // Skipped blocks become fill jobs, one per tile, so threads share them evenly.
   for (const auto& s : plan.skipped)
     for (std::size_t k = s.a[2]; k < s.b[2]; ++k)

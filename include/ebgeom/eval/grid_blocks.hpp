@@ -20,6 +20,16 @@
 ///   search proves far get their sign from a neighbour inside the tile (a far sample's ball of
 ///   radius > band >= spacing holds no surface, so its axis neighbours share its sign) or, failing
 ///   that, from one full query.
+/// - SDFs with a split sign (`has_split_sign_v`, e.g. `SignedMeshSdf` with a winding sign) whose
+///   kind is `implicit` (signs must not be propagated: a winding sign also changes across the
+///   surfaces that fill holes, far from the mesh) are planned with the unsigned distance and
+///   signed by proof: a block proven far (as above, with |S| = d) whose samples' box gets a sign
+///   from `sign_over` is skipped with it. A far single tile with no such sign is split into
+///   octants (4^3, 2^3) whose boxes are tried in turn, and the samples left get `sign_at`: a tile
+///   of one sign is skipped, one holding both (where w = 1/2 crosses far from the mesh) is kept,
+///   with signs only. Kept tiles search distances within the band (`unsigned_within`) and sign
+///   their samples the same way. Every sample's sign is the one `sign_at` gives it, so a banded
+///   grid is the dense grid clamped, sign included.
 
 #include <algorithm>
 #include <array>
@@ -38,6 +48,7 @@
 #include "ebgeom/eval/grid_spec.hpp"
 #include "ebgeom/octree/octree.hpp"
 #include "ebgeom/sdf/concepts.hpp"
+#include "ebgeom/sdf/split_sign.hpp"
 
 namespace ebgeom::detail {
 
@@ -72,6 +83,7 @@ template <class T> struct TileJob {
   std::array<std::uint32_t, 3> tile{};
   bool fill = false;
   bool has_centre = false; ///< `value`, `centre` hold S at the centre of an enclosing block
+  bool sign_only = false;  ///< every sample is farther than the band: only signs are needed
   T value = 0;
   Vec3<T> centre{};
 };
@@ -94,6 +106,7 @@ template <class T> struct TileParams {
   bool coherent = true;
   bool tile = false;          ///< dense values through `eval_lattice` (see `GridSearch::tile`)
   bool can_propagate = false; ///< band >= the largest spacing: far samples share neighbours' signs
+  bool split = false; ///< split-sign SDF of kind `implicit`: signs by proof (see the file comment)
 };
 
 /// Value written at a sample proven (from a block centre) farther than the band.
@@ -140,6 +153,135 @@ void eval_packed(const GridFrame<T>& f, const std::array<std::size_t, 3>& o,
       for (std::size_t x = 0; x < s[0]; ++x) vals[x + W * (y + W * z)] = tmp[n++];
 }
 
+/// Signs of the samples [lo, hi) (local indices in the tile whose first sample is `base`, stride
+/// 8 per axis) that `sign_over` proves over boxes: the block's samples' box first, then its
+/// octants, down to blocks of 2 samples per side. Samples left `unknown` need `sign_at`. A box
+/// is tried only when `dist(block)` (a lower bound on its samples' distances to the surface)
+/// exceeds its half-diagonal, since closer boxes touch the surface and the proof fails.
+template <class S, class Dist>
+void prove_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
+                 const std::array<std::size_t, 3>& base, const std::array<std::size_t, 3>& lo,
+                 const std::array<std::size_t, 3>& hi, Sign* sg, Dist&& dist) {
+  using T = sdf_scalar_t<S>;
+  constexpr std::size_t W = grid_tile;
+  if ((hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]) <= 1) return;
+  const Vec3<T> p0 = f.point(base[0] + lo[0], base[1] + lo[1], base[2] + lo[2]);
+  const Vec3<T> p1 = f.point(base[0] + hi[0] - 1, base[1] + hi[1] - 1, base[2] + hi[2] - 1);
+  if (dist(lo, hi) > norm(p1 - p0) * T(0.5)) {
+    const Sign s = sdf.sign_over(Aabb<T>{p0, p1});
+    if (s != Sign::unknown) {
+      for (std::size_t z = lo[2]; z < hi[2]; ++z)
+        for (std::size_t y = lo[1]; y < hi[1]; ++y)
+          for (std::size_t x = lo[0]; x < hi[0]; ++x) sg[x + W * (y + W * z)] = s;
+      return;
+    }
+  }
+  std::array<std::size_t, 3> mid;
+  for (int a = 0; a < 3; ++a) mid[a] = lo[a] + (hi[a] - lo[a] + 1) / 2;
+  for (int o = 0; o < 8; ++o) {
+    std::array<std::size_t, 3> a, b;
+    bool empty = false;
+    for (int ax = 0; ax < 3; ++ax) {
+      const bool upper = (o >> ax) & 1;
+      a[ax] = upper ? mid[ax] : lo[ax];
+      b[ax] = upper ? hi[ax] : mid[ax];
+      empty = empty || a[ax] >= b[ax];
+    }
+    if (!empty) prove_signs(sdf, f, base, a, b, sg, dist);
+  }
+}
+
+/// The sign every sample of the tile `tile` gets from `sign_at` when it is one sign, else
+/// `unknown`; `far` is a lower bound on the samples' distances. Proofs first (`prove_signs`),
+/// then `sign_at` per remaining sample, stopping at the first disagreement.
+template <class S>
+Sign tile_sign(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
+               const std::array<std::size_t, 3>& tile, sdf_scalar_t<S> far) {
+  constexpr std::size_t W = grid_tile;
+  const std::array<std::size_t, 3> base{{tile[0] * W, tile[1] * W, tile[2] * W}};
+  std::array<std::size_t, 3> size;
+  for (int a = 0; a < 3; ++a) size[a] = std::min(f.n[a], base[a] + W) - base[a];
+  Sign sg[W * W * W];
+  std::fill(sg, sg + W * W * W, Sign::unknown);
+  prove_signs(
+      sdf, f, base, {{0, 0, 0}}, size, sg,
+      [&](const std::array<std::size_t, 3>&, const std::array<std::size_t, 3>&) { return far; });
+  Sign first = Sign::unknown;
+  for (std::size_t z = 0; z < size[2]; ++z)
+    for (std::size_t y = 0; y < size[1]; ++y)
+      for (std::size_t x = 0; x < size[0]; ++x) {
+        Sign s = sg[x + W * (y + W * z)];
+        if (s == Sign::unknown) s = sdf.sign_at(f.point(base[0] + x, base[1] + y, base[2] + z));
+        if (first == Sign::unknown) first = s;
+        if (s != first) return Sign::unknown;
+      }
+  return first;
+}
+
+/// `eval_tile` for split-sign SDFs of kind `implicit` in a band (see the file comment).
+template <class S>
+void eval_split_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
+                     const TileJob<sdf_scalar_t<S>>& job, const TileParams<sdf_scalar_t<S>>& prm,
+                     sdf_scalar_t<S>* vals) {
+  using T = sdf_scalar_t<S>;
+  constexpr std::size_t W = grid_tile;
+  const std::array<std::size_t, 3> base{{job.tile[0] * W, job.tile[1] * W, job.tile[2] * W}};
+  std::array<std::size_t, 3> size;
+  for (int a = 0; a < 3; ++a) size[a] = std::min(f.n[a], base[a] + W) - base[a];
+  const T eps = lipschitz_slack<T>();
+  const T tiny = std::numeric_limits<T>::min();
+  // Distances: in the band, vals = d (near[l]); farther, vals = a lower bound >= band.
+  bool near[W * W * W];
+  for (std::size_t z = 0; z < size[2]; ++z)
+    for (std::size_t y = 0; y < size[1]; ++y)
+      for (std::size_t x = 0; x < size[0]; ++x) {
+        const std::size_t l = x + W * (y + W * z);
+        const Vec3<T> p = f.point(base[0] + x, base[1] + y, base[2] + z);
+        near[l] = false;
+        if (job.has_centre) {
+          // |S(p)| >= |S(c)| - |p - c| (1-Lipschitz): proven far without a search.
+          const T lb = (std::abs(job.value) - norm(p - job.centre) * (T(1) + eps)) * (T(1) - eps);
+          if (job.sign_only || lb > prm.band) {
+            vals[l] = prm.outside == BandFill::clamp ? prm.band : std::max(prm.band, lb);
+            continue;
+          }
+        }
+        T bound = prm.band;
+        const int q = prm.coherent ? scan_neighbour(x, y, z) : -1;
+        if (q >= 0 && near[q]) {
+          const Vec3<T> pq = f.point(base[0] + std::size_t(q) % W, base[1] + std::size_t(q) / W % W,
+                                     base[2] + std::size_t(q) / (W * W));
+          bound = std::min(bound, (vals[q] + norm(p - pq)) * (T(1) + eps) + tiny);
+        }
+        T d = sdf.unsigned_within(p, bound);
+        if (!(d <= bound) && bound < prm.band) d = sdf.unsigned_within(p, prm.band);
+        near[l] = d <= prm.band;
+        vals[l] = near[l] ? d : prm.band;
+      }
+  // Signs: proofs over boxes whose samples are all farther than the box's half-diagonal.
+  Sign sg[W * W * W];
+  std::fill(sg, sg + W * W * W, Sign::unknown);
+  prove_signs(sdf, f, base, {{0, 0, 0}}, size, sg,
+              [&](const std::array<std::size_t, 3>& lo, const std::array<std::size_t, 3>& hi) {
+                T m = std::numeric_limits<T>::infinity();
+                for (std::size_t z = lo[2]; z < hi[2]; ++z)
+                  for (std::size_t y = lo[1]; y < hi[1]; ++y)
+                    for (std::size_t x = lo[0]; x < hi[0]; ++x)
+                      m = std::min(m, vals[x + W * (y + W * z)]);
+                return m;
+              });
+  for (std::size_t z = 0; z < size[2]; ++z)
+    for (std::size_t y = 0; y < size[1]; ++y)
+      for (std::size_t x = 0; x < size[0]; ++x) {
+        const std::size_t l = x + W * (y + W * z);
+        if (!(vals[l] > T(0))) continue; // on the surface (or NaN): no sign
+        Sign s = sg[l];
+        if (s == Sign::unknown) s = sdf.sign_at(f.point(base[0] + x, base[1] + y, base[2] + z));
+        vals[l] = near[l] ? band_value(prm, apply_sign(vals[l], s))
+                          : (s == Sign::negative ? -vals[l] : vals[l]);
+      }
+}
+
 /// Fills `vals[x + 8 (y + 8 z)]` (local indices, stride 8 even for partial tiles) with the values
 /// of tile `job.tile`: S (dense) or the banded values of `TileParams`. Bit for bit what per-point
 /// evaluation gives (then clamped) at every sample inside the band.
@@ -155,6 +297,12 @@ void eval_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
   const T eps = lipschitz_slack<T>();
   const T tiny = std::numeric_limits<T>::min();
 
+  if constexpr (has_split_sign_v<S>) {
+    if (prm.band > 0 && prm.split) {
+      eval_split_tile(sdf, f, job, prm, vals);
+      return;
+    }
+  }
   if constexpr (has_lattice_eval_v<S>) {
     if (prm.band == 0 && prm.tile) {
       eval_packed(f, {{i0, j0, k0}}, {{sx, sy, sz}}, vals, [&](Span<const Vec3<T>> p, Span<T> v) {
@@ -306,7 +454,7 @@ void eval_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
 template <class T> struct BlockInfo {
   T value = 0;
   Vec3<T> centre{};
-  std::uint8_t state = 0; ///< 0: outside the range, 1: skipped (far), 2: kept
+  std::uint8_t state = 0; ///< 0: outside the range, 1: skipped (far), 2: kept, 3: far, signs only
 };
 
 /// Tiles `[ta, tb)` of the range `region` (sample indices).
@@ -318,11 +466,12 @@ inline void range_tiles(const GridRange& region, std::array<std::size_t, 3>& ta,
   }
 }
 
-/// Plans the tiles of `region` (see the file comment). `skip` enables the octree.
+/// Plans the tiles of `region` (see the file comment). `skip` enables the octree; `prm.split`
+/// plans with the unsigned distance and signs by proof.
 template <class S>
 GridPlan<sdf_scalar_t<S>> plan_grid(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
-                                    const GridRange& region, double band_d, bool skip,
-                                    const ExecOptions& exec) {
+                                    const GridRange& region, const TileParams<sdf_scalar_t<S>>& prm,
+                                    bool skip, const ExecOptions& exec) {
   using T = sdf_scalar_t<S>;
   GridPlan<T> plan;
   std::array<std::size_t, 3> ta, tb;
@@ -344,7 +493,7 @@ GridPlan<sdf_scalar_t<S>> plan_grid(const S& sdf, const GridFrame<sdf_scalar_t<S
   // Octree over tile indices [0, 2^D)^3 of the whole grid; nodes at depth D are single tiles.
   int depth = 0;
   while ((std::size_t(1) << depth) < std::max({f.tiles[0], f.tiles[1], f.tiles[2]})) ++depth;
-  const T band = T(band_d);
+  const T band = prm.band;
   const T eps = lipschitz_slack<T>();
   auto refine = [&](const Aabb<T>& box, int d, BlockInfo<T>& info) {
     std::array<std::size_t, 3> a, b, lo, hi;
@@ -362,6 +511,26 @@ GridPlan<sdf_scalar_t<S>> plan_grid(const S& sdf, const GridFrame<sdf_scalar_t<S
     const Vec3<T> mid = (p0 + p1) * T(0.5);
     const T r = norm(p1 - p0) * T(0.5);
     info.centre = mid;
+    if constexpr (has_split_sign_v<S>) {
+      if (prm.split) {
+        const T ud = sdf.unsigned_distance(mid);
+        info.value = ud;
+        if (!(ud > (r + band) * (T(1) + eps))) {
+          info.state = 2;
+          return d < depth;
+        }
+        // Far: a sign for the whole block, else split; a single tile's samples decide.
+        Sign sign = sdf.sign_over(Aabb<T>{p0, p1});
+        if (sign == Sign::unknown && d == depth) sign = tile_sign(sdf, f, a, ud - r);
+        if (sign != Sign::unknown) {
+          info.value = sign == Sign::negative ? -ud : ud;
+          info.state = 1;
+          return false;
+        }
+        info.state = 3;
+        return d < depth;
+      }
+    }
     info.value = sdf(mid);
     if (std::abs(info.value) > (r + band) * (T(1) + eps)) {
       info.state = 1;
@@ -388,8 +557,9 @@ GridPlan<sdf_scalar_t<S>> plan_grid(const S& sdf, const GridFrame<sdf_scalar_t<S
     }
     if (info.state == 1) {
       plan.skipped.push_back({a, b, info.value, info.centre});
-    } else if (info.state == 2) {
+    } else if (info.state >= 2) {
       TileJob<T> job;
+      job.sign_only = info.state == 3;
       job.tile = {{std::uint32_t(a[0]), std::uint32_t(a[1]), std::uint32_t(a[2])}};
       job.has_centre = true;
       job.value = info.value;
@@ -401,9 +571,11 @@ GridPlan<sdf_scalar_t<S>> plan_grid(const S& sdf, const GridFrame<sdf_scalar_t<S
   return plan;
 }
 
-/// `TileParams` for `opt` on grid `spec`.
-template <class T>
-TileParams<T> tile_params(const GridSpec<T>& spec, const GridOptions& opt) noexcept {
+/// `TileParams` for `opt` on grid `spec` with `sdf`.
+template <class S>
+TileParams<sdf_scalar_t<S>> tile_params(const S& sdf, const GridSpec<sdf_scalar_t<S>>& spec,
+                                        const GridOptions& opt) noexcept {
+  using T = sdf_scalar_t<S>;
   TileParams<T> prm;
   prm.band = T(opt.band);
   prm.outside = opt.outside;
@@ -413,8 +585,16 @@ TileParams<T> tile_params(const GridSpec<T>& spec, const GridOptions& opt) noexc
   T hmax = 0;
   for (int a = 0; a < 3; ++a)
     if (spec.dims[a] > 1) hmax = std::max(hmax, h[a]);
-  prm.can_propagate = prm.band >= hmax * (T(1) + lipschitz_slack<T>());
+  const bool implicit = kind_of(sdf) == SdfKind::implicit;
+  prm.can_propagate = !implicit && prm.band >= hmax * (T(1) + lipschitz_slack<T>());
+  prm.split = has_split_sign_v<S> && implicit;
   return prm;
+}
+
+/// True when a band may skip blocks far from the surface: the SDF is `exact` or `bound`, or its
+/// sign is proven by blocks (`TileParams::split`).
+template <class S> bool skips_far_blocks(const S& sdf, const TileParams<sdf_scalar_t<S>>& prm) {
+  return prm.band > 0 && (kind_of(sdf) != SdfKind::implicit || prm.split);
 }
 
 /// Common argument checks of the samplers.

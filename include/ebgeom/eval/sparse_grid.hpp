@@ -71,7 +71,9 @@ template <class T> struct SparseGrid {
 /// Samples `sdf` on `spec` in a narrow band of half-width `opt.band` (> 0) and keeps only the
 /// tiles the band needs (see `SparseGrid`). Kept values are bit for bit those of `sample_grid`
 /// with the same options (`opt.outside` applies inside kept tiles; skipped tiles read ±band).
-/// For `implicit` SDFs every tile is kept. Results never depend on the thread count.
+/// For `implicit` SDFs every tile is kept, unless they follow the split-sign protocol
+/// (`has_split_sign_v`, e.g. `SignedMeshSdf` with a winding sign): then far tiles are signed by
+/// proof and only tiles near the surface, or crossed far from it by a change of sign, are kept. Results never depend on the thread count.
 /// Errors: `invalid_argument` for an invalid spec or a band that is not finite and > 0;
 /// Allocation failure throws `std::bad_alloc` (size the grid with `memory_bytes` in mind).
 template <class S>
@@ -87,9 +89,9 @@ sample_grid_sparse(const S& sdf, const GridSpec<sdf_scalar_t<S>>& spec, const Gr
     return make_error(ErrorCode::invalid_argument, "sample_grid_sparse: band must be > 0");
 
   const detail::GridFrame<T> f(spec);
-  const detail::TileParams<T> prm = detail::tile_params(spec, opt);
-  const bool skip = kind_of(sdf) != SdfKind::implicit;
-  detail::GridPlan<T> plan = detail::plan_grid(sdf, f, all, opt.band, skip, opt.exec);
+  const detail::TileParams<T> prm = detail::tile_params(sdf, spec, opt);
+  const bool skip = detail::skips_far_blocks(sdf, prm);
+  detail::GridPlan<T> plan = detail::plan_grid(sdf, f, all, prm, skip, opt.exec);
 
   SparseGrid<T> g;
   g.spec = spec;

@@ -18,7 +18,9 @@
 /// See docs/sign.md for the outcomes of each mode on imperfect meshes.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -31,6 +33,7 @@
 #include "ebgeom/mesh/validate.hpp"
 #include "ebgeom/sdf/concepts.hpp"
 #include "ebgeom/sdf/mesh_sdf.hpp"
+#include "ebgeom/sdf/split_sign.hpp"
 #include "ebgeom/sdf/winding.hpp"
 
 namespace ebgeom {
@@ -132,10 +135,11 @@ struct SignOptions {
 };
 
 /// Exact distance to a triangle mesh with the sign chosen by `SignMode` (see the file comment).
-/// Wraps a `MeshSdf<T, K, W>` (the magnitude, bit for bit `MeshSdf::unsigned_distance`) and, for
+/// Wraps a `MeshSdf<T, K, W>` (the magnitude, bit for bit |`MeshSdf`'s value|) and, for
 /// the winding modes, a `FastWindingNumber<T, K>`. Sign convention: < 0 inside. Winding modes
 /// report inside where w > 1/2, so a value is negative only if w > 1/2 and the distance is > 0.
 /// Never NaN for finite queries. Immutable; queries are const, allocation-free and thread-safe.
+/// Follows the split-sign protocol (sdf/split_sign.hpp), so narrow bands stay fast in every mode.
 template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSdf {
  public:
   using scalar_type = T;
@@ -172,17 +176,8 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
 
   /// Signed distance at `p` (< 0 inside; >= 0 everywhere for `unsigned_distance`).
   T operator()(const Vec3<T>& p) const noexcept {
-    switch (mode_) {
-    case SignMode::pseudonormal:
-      return sdf_(p);
-    case SignMode::winding:
-    case SignMode::fast_winding: {
-      const T d = sdf_.unsigned_distance(p);
-      return d > T(0) && inside_by_winding(p) ? -d : d;
-    }
-    default:
-      return sdf_.unsigned_distance(p);
-    }
+    if (mode_ == SignMode::pseudonormal) return sdf_(p);
+    return with_sign(std::abs(sdf_(p)), p);
   }
 
   /// Closest point, triangle and feature of `MeshSdf::closest`, with `distance` signed by the
@@ -195,7 +190,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
       break;
     case SignMode::winding:
     case SignMode::fast_winding:
-      c.distance = d > T(0) && inside_by_winding(p) ? -d : d;
+      c.distance = with_sign(d, p);
       break;
     default:
       c.distance = d;
@@ -203,17 +198,60 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
     return c;
   }
 
-  T unsigned_distance(const Vec3<T>& p) const noexcept { return sdf_.unsigned_distance(p); }
+  /// Unsigned distance: |(*this)(p)| bit for bit (NaN for a non-finite p).
+  T unsigned_distance(const Vec3<T>& p) const noexcept { return std::abs(sdf_(p)); }
 
-  /// Values at a block of lattice samples, bit for bit `(*this)(pts[l])` (see
-  /// `MeshSdf::eval_lattice`, used as is in the pseudonormal mode; other modes evaluate per point).
+  /// Split-sign protocol: |S(p)| bit for bit when it is <= `max`, +infinity otherwise (a search
+  /// bounded by `max`, faster than `unsigned_distance` far from the surface).
+  T unsigned_within(const Vec3<T>& p, T max) const noexcept {
+    const T d = std::abs(sdf_.bounded(p, max));
+    return d <= max ? d : std::numeric_limits<T>::infinity();
+  }
+
+  /// Split-sign protocol: the sign S has at `p` wherever |S(p)| > 0: from the winding number in
+  /// the winding modes (negative where w > 1/2), always positive for `unsigned_distance`, from a
+  /// full closest-point search with `pseudonormal`.
+  Sign sign_at(const Vec3<T>& p) const noexcept {
+    switch (mode_) {
+    case SignMode::winding:
+    case SignMode::fast_winding:
+      return inside_by_winding(p) ? Sign::negative : Sign::positive;
+    case SignMode::unsigned_distance:
+      return Sign::positive;
+    default:
+      return std::signbit(sdf_(p)) ? Sign::negative : Sign::positive;
+    }
+  }
+
+  /// Split-sign protocol: a sign `sign_at` gives at every point of `box`, or `unknown`. Winding
+  /// modes bound the winding number over the box (`FastWindingNumber::range_over`, or
+  /// `winding_range` for the exact sum: O(n)) and answer only when the whole interval lies on
+  /// one side of 1/2, so the answer is never wrong; `unknown` near the surface or where w
+  /// crosses 1/2. `unsigned_distance`: always positive; `pseudonormal`: `unknown`.
+  Sign sign_over(const Aabb<T>& box) const noexcept {
+    int side = 0;
+    switch (mode_) {
+    case SignMode::fast_winding:
+      side = fast_.range_over(box).side();
+      break;
+    case SignMode::winding:
+      side = winding_range(sdf_.mesh(), box).side();
+      break;
+    case SignMode::unsigned_distance:
+      return Sign::positive;
+    default:
+      return Sign::unknown;
+    }
+    return side > 0 ? Sign::negative : side < 0 ? Sign::positive : Sign::unknown;
+  }
+
+  /// Values at a block of lattice samples, bit for bit `(*this)(pts[l])`: the distances of
+  /// `MeshSdf::eval_lattice`, then the sign of the mode per sample.
   void eval_lattice(Span<const Vec3<T>> pts, const std::array<std::size_t, 3>& dims,
                     Span<T> out) const {
-    if (mode_ == SignMode::pseudonormal) {
-      sdf_.eval_lattice(pts, dims, out);
-      return;
-    }
-    for (std::size_t l = 0; l < pts.size(); ++l) out[l] = (*this)(pts[l]);
+    sdf_.eval_lattice(pts, dims, out);
+    if (mode_ == SignMode::pseudonormal) return;
+    for (std::size_t l = 0; l < pts.size(); ++l) out[l] = with_sign(std::abs(out[l]), pts[l]);
   }
 
   /// Winding number at `p` by the resolved mode's method: exact for `winding`, fast otherwise
@@ -261,6 +299,12 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
       s.fast_ = std::move(*f);
     }
     return s;
+  }
+
+  /// The value of a non-pseudonormal mode from the unsigned distance `d` at `p` (the winding
+  /// number is computed only where d > 0).
+  T with_sign(T d, const Vec3<T>& p) const noexcept {
+    return d > T(0) && mode_ != SignMode::unsigned_distance && inside_by_winding(p) ? -d : d;
   }
 
   bool inside_by_winding(const Vec3<T>& p) const noexcept {

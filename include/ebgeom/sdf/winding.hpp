@@ -15,6 +15,10 @@
 ///   every node; a child whose cluster centre is farther from p than β times its radius
 ///   contributes its far-field expansion, a near leaf its exact solid angles. O(log n) per query
 ///   for points away from the surface; the error decays like β⁻³.
+/// - `winding_range(mesh, box)` and `FastWindingNumber::range_over(box)`: an interval holding
+///   every value the exact sum or the fast evaluation computes at any point of a box (rounding
+///   included), from the value at the box's centre and bounds on each term's gradient. Grid
+///   samplers use it to sign whole blocks far from the surface at once (`WindingRange::side`).
 
 #include <algorithm>
 #include <cmath>
@@ -65,6 +69,116 @@ template <class T> T winding_number(const TriangleMesh<T>& mesh, const Vec3<T>& 
         a = d(mesh.corner(t, 0)), b = d(mesh.corner(t, 1)), c = d(mesh.corner(t, 2));
       },
       d(p)));
+}
+
+/// An interval [lo, hi] holding every value a winding-number evaluation computes at any point of
+/// a box, rounding included (`winding_range`, `FastWindingNumber::range_over`). Unbounded
+/// (-inf, +inf) when the box touches or nearly touches the mesh.
+struct WindingRange {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  /// +1 when every value is > 1/2 (inside everywhere), -1 when every value is < 1/2 (outside
+  /// everywhere), 0 when the interval holds 1/2.
+  int side() const noexcept { return lo > 0.5 ? 1 : hi < 0.5 ? -1 : 0; }
+};
+
+namespace detail {
+
+/// Accumulator of term intervals for `WindingRange` (all in units of w, i.e. divided by 4π).
+struct RangeSum {
+  double lo = 0, hi = 0;
+  double mag = 0;        ///< Σ of bounds on each term's intermediate magnitudes (for rounding)
+  double cond = 0;       ///< Σ of exact solid angles' conditioning (1 + size / distance)
+  std::size_t terms = 0; ///< terms summed per point (bounds the accumulated rounding)
+  bool ok = true;
+  void add(const RangeSum& o) noexcept {
+    lo += o.lo, hi += o.hi, mag += o.mag, cond += o.cond, terms += o.terms, ok = ok && o.ok;
+  }
+  /// The hull of two alternatives (a point takes one or the other): rounding counts both.
+  static RangeSum hull(const RangeSum& a, const RangeSum& b) noexcept {
+    RangeSum h;
+    h.lo = std::min(a.lo, b.lo), h.hi = std::max(a.hi, b.hi);
+    h.mag = a.mag + b.mag, h.cond = a.cond + b.cond, h.terms = a.terms + b.terms;
+    h.ok = a.ok && b.ok;
+    return h;
+  }
+};
+
+/// The box a range is taken over, in double: its centre and a radius every point is within.
+struct RangeBox {
+  Aabb<double> box;
+  Vec3<double> c;
+  double rho;
+  template <class T> explicit RangeBox(const Aabb<T>& b) noexcept : box(Aabb<double>::from(b)) {
+    c = box.center();
+    rho = norm(box.extent()) * 0.5 * (1 + 1e-12);
+  }
+};
+
+/// Adds the exact solid angle of triangle (a, b, c) over the box: its value at the centre plus or
+/// minus the radius times a gradient bound. |∇Ω| <= 2 area / d³ at distance d from the triangle
+/// (the kernel (y - p)·n / |y - p|³ has gradient (3 (r̂·n) r̂ - n) / |r|³, of norm <= 2 / |r|³), and
+/// every segment from the centre to a point of the box stays at least the distance d between the
+/// triangle's box and the box away. |Ω| <= area / d² bounds the value too.
+inline void add_triangle_range(RangeSum& s, const RangeBox& x, const Vec3<double>& a,
+                               const Vec3<double>& b, const Vec3<double>& c) noexcept {
+  constexpr double inv4pi = 0.07957747154594767;
+  const Aabb<double> tb = Aabb<double>::of(a, b, c);
+  double d2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double g = std::max({tb.lo[i] - x.box.hi[i], x.box.lo[i] - tb.hi[i], 0.0});
+    d2 += g * g;
+  }
+  const double d = std::sqrt(d2) * (1 - 1e-12);
+  if (!(d > 0)) {
+    s.ok = false;
+    return;
+  }
+  const double area = 0.5 * norm(cross(b - a, c - a)) * (1 + 1e-12);
+  const double w = solid_angle(x.c, a, b, c) * inv4pi;
+  const double var = x.rho * 2 * area / (d * d * d) * inv4pi * (1 + 1e-12);
+  const double cap = area / (d * d) * inv4pi * (1 + 1e-12);
+  const double lo = std::max(w - var, -cap), hi = std::min(w + var, cap);
+  s.lo += lo, s.hi += hi;
+  s.mag += std::max(std::abs(lo), std::abs(hi));
+  s.cond += 1 + norm(tb.extent()) / d;
+  s.terms += 1;
+}
+
+/// The final interval: the sum widened by its rounding. A point's value is a sum of `terms`
+/// terms, each computed with a few dozen roundings of at most `mag` (in precision `eps`, the
+/// evaluation's precision), accumulated one by one, then rounded to the output precision; the
+/// exact solid angles are computed in double, with an error that grows with size / distance.
+inline WindingRange finish_range(const RangeSum& s, double eps) noexcept {
+  WindingRange r;
+  if (!s.ok || !std::isfinite(s.lo) || !std::isfinite(s.hi)) return r;
+  const double dbl = std::numeric_limits<double>::epsilon();
+  const double margin = (double(s.terms) + 64) * eps * (s.mag + 1) + 1024 * dbl * s.cond;
+  r.lo = s.lo - margin;
+  r.hi = s.hi + margin;
+  return r;
+}
+
+} // namespace detail
+
+/// Every value `winding_number(mesh, p)` computes for p in `box` lies in the returned interval
+/// (see `WindingRange`). O(n): one exact sum at the box's centre plus a gradient bound per
+/// triangle; unbounded when the box touches a triangle's bounding box. Thread-safe.
+template <class T>
+WindingRange winding_range(const TriangleMesh<T>& mesh, const Aabb<T>& box) noexcept {
+  const detail::RangeBox x(box);
+  detail::RangeSum s;
+  for (std::size_t t = 0; t < mesh.triangle_count() && s.ok; ++t)
+    detail::add_triangle_range(s, x, Vec3<double>::from(mesh.corner(t, 0)),
+                               Vec3<double>::from(mesh.corner(t, 1)),
+                               Vec3<double>::from(mesh.corner(t, 2)));
+  // The exact sum runs in double whatever T, then rounds once to T.
+  const double eps = std::numeric_limits<double>::epsilon();
+  WindingRange r = detail::finish_range(s, eps);
+  const double out =
+      4 * double(std::numeric_limits<T>::epsilon()) * (std::abs(s.lo) + std::abs(s.hi) + 1);
+  r.lo -= out, r.hi += out;
+  return r;
 }
 
 /// Options of `FastWindingNumber`.
@@ -190,6 +304,24 @@ template <class T, int K = 4> class FastWindingNumber {
   /// Exact winding number over the same triangles (the oracle), O(n).
   T exact(const Vec3<T>& p) const noexcept { return T(leaf_sum(0, std::uint32_t(n_), p) * inv4pi); }
 
+  /// Every value `(*this)(p)` computes for p in `box` lies in the returned interval, rounding
+  /// included (see `WindingRange`). Walks the tree as a query would, for the whole box at once:
+  /// a cluster far from every point of the box adds its far field at the box's centre plus or
+  /// minus the radius times a bound on its gradient; one near every point is opened; one that is
+  /// far for some points and near for others adds the hull of both. Near leaves add their exact
+  /// solid angles the same way (`winding_range`). Unbounded when the box touches a near leaf's
+  /// triangles. Costs about one query at the box's centre. Thread-safe.
+  WindingRange range_over(const Aabb<T>& box) const noexcept {
+    const detail::RangeBox x(box);
+    detail::RangeSum s;
+    const bvh::ChildRef root = bvh_.root;
+    if (root.is_leaf())
+      leaf_range(s, x, root.index, root.count);
+    else if (root.is_inner())
+      s = node_range(root.index, x);
+    return detail::finish_range(s, double(std::numeric_limits<T>::epsilon()));
+  }
+
   double beta() const noexcept { return beta_; }
   std::size_t triangle_count() const noexcept { return n_; }
   const bvh::WideBvh<T, K>& tree() const noexcept { return bvh_; }
@@ -213,6 +345,96 @@ template <class T, int K = 4> class FastWindingNumber {
       const Vec3<double> b{double(t[3 * n + i]), double(t[4 * n + i]), double(t[5 * n + i])};
       const Vec3<double> c{double(t[6 * n + i]), double(t[7 * n + i]), double(t[8 * n + i])};
       s += solid_angle(pd, a, b, c);
+    }
+    return s;
+  }
+
+  /// Adds the exact solid angles of slots [first, first + count) over the box.
+  void leaf_range(detail::RangeSum& s, const detail::RangeBox& x, std::uint32_t first,
+                  std::uint32_t count) const noexcept {
+    const T* t = tri_.data();
+    const std::size_t n = n_;
+    for (std::size_t i = first; i < std::size_t(first) + count && s.ok; ++i)
+      detail::add_triangle_range(
+          s, x, {double(t[0 * n + i]), double(t[1 * n + i]), double(t[2 * n + i])},
+          {double(t[3 * n + i]), double(t[4 * n + i]), double(t[5 * n + i])},
+          {double(t[6 * n + i]), double(t[7 * n + i]), double(t[8 * n + i])});
+  }
+
+  /// The interval of node `ni`'s children over the box (see `range_over`).
+  detail::RangeSum node_range(std::uint32_t ni, const detail::RangeBox& x) const {
+
+    // A query's squared distance r2 is within a relative 8 eps of the exact one (three rounded
+    // squares, two sums, the rounded differences): classify only with that margin.
+    const double e = 16 * double(std::numeric_limits<T>::epsilon());
+    detail::RangeSum s;
+    const WindingNode<T, K>& c = nodes_[ni];
+    const bvh::WideNode<T, K>& node = bvh_.nodes[ni];
+    for (int k = 0; k < K && s.ok; ++k) {
+      const bvh::ChildRef r = node.child[k];
+      if (r.is_empty()) continue;
+      const Vec3<double> ctr{double(c.cx[k]), double(c.cy[k]), double(c.cz[k])};
+      const double far2 = double(c.far2[k]);
+      const double dmin2 = x.box.distance2(ctr), dmax2 = x.box.max_distance2(ctr);
+      const bool all_far = dmin2 * (1 - e) > far2;
+      const bool all_near = dmax2 * (1 + e) <= far2;
+      detail::RangeSum fv, nv;
+      if (!all_near) {
+        // Points that take the far field have r2 > far2 / (1 + e) and r >= dmin.
+        const double dmin = std::sqrt(dmin2) * (1 - 1e-12);
+        const double dlow = std::max(dmin, std::sqrt(far2 / (1 + e)) * (1 - 1e-12));
+        const Vec3<double> nn{double(c.nx[k]), double(c.ny[k]), double(c.nz[k])};
+        double mm[3][3], fro2 = 0;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            mm[i][j] = double(c.m[3 * i + j][k]);
+            fro2 += mm[i][j] * mm[i][j];
+          }
+        const double tr = mm[0][0] + mm[1][1] + mm[2][2], fro = std::sqrt(fro2) * (1 + 1e-12);
+        const double nrm = norm(nn) * (1 + 1e-12);
+        if (!(dlow > 0)) {
+          fv.ok = false;
+        } else {
+          // |N·r/|r|³| <= |N| / r², |Σ M_ij (δ_ij r² - 3 r_i r_j) / r⁵| <= (|tr M| + 3 |M|_F) / r³.
+          const double cap =
+              (nrm / (dlow * dlow) + (std::abs(tr) + 3 * fro) / (dlow * dlow * dlow)) * inv4pi *
+              (1 + 1e-12);
+          double lo = -cap, hi = cap;
+          if (dmin > 0) {
+            // Value at the centre, plus or minus rho times the gradient bound along segments that
+            // stay >= dmin from the cluster's centre: order 1: 2 |N| / r³; order 2 (f = g / r⁵,
+            // |g| <= (|tr M| + 3 |M|) r², |∇g| <= (2 |tr M| + 6 |M|) r): (7 |tr M| + 21 |M|) / r⁴.
+            const Vec3<double> rv = ctr - x.c;
+            const double r2 = dot(rv, rv), ir = 1 / std::sqrt(r2);
+            const Vec3<double> u = rv * ir;
+            double quad = 0;
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j) quad += u[i] * mm[i][j] * u[j];
+            const double v = (dot(nn, u) * ir * ir + (tr - 3 * quad) * ir * ir * ir) * inv4pi;
+            const double d3 = dmin * dmin * dmin;
+            const double grad =
+                (2 * nrm / d3 + (7 * std::abs(tr) + 21 * fro) / (d3 * dmin)) * inv4pi * (1 + 1e-12);
+            lo = std::max(lo, v - x.rho * grad - 1e-12 * cap);
+            hi = std::min(hi, v + x.rho * grad + 1e-12 * cap);
+          }
+          fv.lo = lo, fv.hi = hi;
+          // Intermediate magnitudes of the far-field formula: |N|/r², and Σ |M_ij| <= 3 |M|_F.
+          fv.mag = (nrm / (dlow * dlow) + (std::abs(tr) + 9 * fro) / (dlow * dlow * dlow)) * inv4pi;
+          fv.terms = 2; // the term and its share of the per-node sum
+        }
+      }
+      if (!all_far) {
+        if (r.is_leaf())
+          leaf_range(nv, x, r.index, r.count);
+        else if (r.is_inner())
+          nv = node_range(r.index, x);
+      }
+      if (all_far)
+        s.add(fv);
+      else if (all_near)
+        s.add(nv);
+      else
+        s.add(detail::RangeSum::hull(fv, nv));
     }
     return s;
   }

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
+#pragma once
+/// \file
+/// The split-sign protocol: an SDF whose value is an unsigned distance d with a sign decided
+/// apart from it (a winding number, or no sign at all), S(p) = -d where d > 0 and the sign is
+/// negative, else d. Grid samplers use it to keep narrow bands fast for SDFs whose sign cannot
+/// be propagated between far samples (`SdfKind::implicit`, e.g. a winding sign on an open mesh):
+/// blocks proven farther than the band from the surface by the distance (1-Lipschitz) are signed
+/// by `sign_over` without any distance search. `SignedMeshSdf` implements it.
+
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/vec.hpp"
+
+namespace ebgeom {
+
+/// The sign of an SDF's value at a point or over a box; `unknown` where it is not proven.
+enum class Sign : std::int8_t { negative = -1, unknown = 0, positive = 1 };
+
+/// S(p) from its unsigned distance `d` and the sign the SDF has there: -d when d > 0 and `s` is
+/// negative, else d (so points on the surface and NaN distances keep d).
+template <class T> constexpr T apply_sign(T d, Sign s) noexcept {
+  return d > T(0) && s == Sign::negative ? -d : d;
+}
+
+namespace detail {
+template <class S, class = void> struct has_split_sign : std::false_type {};
+template <class S>
+struct has_split_sign<S, std::void_t<decltype(std::declval<const S&>().unsigned_distance(
+                                         std::declval<const Vec3<typename S::scalar_type>&>())),
+                                     decltype(std::declval<const S&>().unsigned_within(
+                                         std::declval<const Vec3<typename S::scalar_type>&>(),
+                                         std::declval<typename S::scalar_type>())),
+                                     decltype(std::declval<const S&>().sign_at(
+                                         std::declval<const Vec3<typename S::scalar_type>&>())),
+                                     decltype(std::declval<const S&>().sign_over(
+                                         std::declval<const Aabb<typename S::scalar_type>&>()))>>
+    : std::true_type {};
+} // namespace detail
+
+/// True when `S` follows the split-sign protocol, all const, thread-safe members:
+/// - `T unsigned_distance(const Vec3<T>& p)`: |S(p)| bit for bit (NaN for a non-finite p);
+/// - `T unsigned_within(const Vec3<T>& p, T max)`: |S(p)| bit for bit when |S(p)| <= max, else
+///   any value > max (a search bounded by `max`);
+/// - `Sign sign_at(const Vec3<T>& p)`: the sign S has at p if |S(p)| > 0 (never `unknown`), so
+///   that `S(p) == apply_sign(unsigned_distance(p), sign_at(p))` bit for bit;
+/// - `Sign sign_over(const Aabb<T>& box)`: a sign every point of `box` gets from `sign_at`, or
+///   `unknown` when none is proven (never a wrong one).
+template <class S> inline constexpr bool has_split_sign_v = detail::has_split_sign<S>::value;
+
+} // namespace ebgeom
