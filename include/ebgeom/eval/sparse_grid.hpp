@@ -73,9 +73,10 @@ template <class T> struct SparseGrid {
 /// with the same options (`opt.outside` applies inside kept tiles; skipped tiles read ±band).
 /// For `implicit` SDFs every tile is kept, unless they follow the split-sign protocol
 /// (`has_split_sign_v`, e.g. `SignedMeshSdf` with a winding sign): then far tiles are signed by
-/// proof and only tiles near the surface, or crossed far from it by a change of sign, are kept. Results never depend on the thread count.
-/// Errors: `invalid_argument` for an invalid spec or a band that is not finite and > 0;
-/// Allocation failure throws `std::bad_alloc` (size the grid with `memory_bytes` in mind).
+/// proof and only tiles near the surface, or crossed far from it by a change of sign, are kept.
+/// Results never depend on the thread count. Errors: `invalid_argument` for an invalid spec or a
+/// band that is not finite and > 0; Allocation failure throws `std::bad_alloc` (size the grid with
+/// `memory_bytes` in mind).
 template <class S>
 Result<SparseGrid<sdf_scalar_t<S>>>
 sample_grid_sparse(const S& sdf, const GridSpec<sdf_scalar_t<S>>& spec, const GridOptions& opt) {

@@ -84,42 +84,80 @@ struct WindingRange {
 
 namespace detail {
 
-/// Accumulator of term intervals for `WindingRange` (all in units of w, i.e. divided by 4π).
+/// The box a range is taken over, in double: its centre, half extents and a radius every point
+/// is within.
+struct RangeBox {
+  Aabb<double> box;
+  Vec3<double> c, e;
+  double rho;
+  template <class T> explicit RangeBox(const Aabb<T>& b) noexcept : box(Aabb<double>::from(b)) {
+    c = box.center();
+    e = box.extent() * 0.5 * (1 + 1e-12);
+    rho = norm(box.extent()) * 0.5 * (1 + 1e-12);
+  }
+};
+
+/// Accumulator of a winding number's terms over a box (all in units of w, i.e. over 4π). Terms
+/// valid on the whole box are models: value and gradient at the centre c, a bound `grad1` on the
+/// gradient's norm and a bound `hess` on the Hessian's norm over the box, so the sum lies within
+/// value ± min(rho Σ grad1, Σ_a |gradient_a| e_a + rho² Σ hess / 2) (first- or second-order Taylor
+/// bound; the second keeps the cancellations between the terms' gradients). Terms that differ
+/// between points (a cluster far from some points and opened for others) add an interval.
 struct RangeSum {
-  double lo = 0, hi = 0;
+  double value = 0;
+  Vec3<double> grad{0, 0, 0};
+  double grad1 = 0, hess = 0;
+  double ilo = 0, ihi = 0;
   double mag = 0;        ///< Σ of bounds on each term's intermediate magnitudes (for rounding)
   double cond = 0;       ///< Σ of exact solid angles' conditioning (1 + size / distance)
   std::size_t terms = 0; ///< terms summed per point (bounds the accumulated rounding)
   bool ok = true;
+
   void add(const RangeSum& o) noexcept {
-    lo += o.lo, hi += o.hi, mag += o.mag, cond += o.cond, terms += o.terms, ok = ok && o.ok;
+    value += o.value, grad += o.grad, grad1 += o.grad1, hess += o.hess;
+    ilo += o.ilo, ihi += o.ihi;
+    mag += o.mag, cond += o.cond, terms += o.terms, ok = ok && o.ok;
   }
-  /// The hull of two alternatives (a point takes one or the other): rounding counts both.
-  static RangeSum hull(const RangeSum& a, const RangeSum& b) noexcept {
+  /// The sum's interval over the box, without rounding margins.
+  void interval(const RangeBox& x, double& lo, double& hi) const noexcept {
+    const double lin =
+        std::abs(grad.x) * x.e.x + std::abs(grad.y) * x.e.y + std::abs(grad.z) * x.e.z;
+    const double w = std::min(x.rho * grad1, lin + 0.5 * x.rho * x.rho * hess) * (1 + 1e-9) +
+                     1e-12 * (std::abs(value) + x.rho * grad1);
+    lo = value + ilo - w, hi = value + ihi + w;
+  }
+  /// The hull of two alternatives (a point takes one or the other), as an interval term;
+  /// rounding counts both.
+  static RangeSum hull(const RangeBox& x, const RangeSum& a, const RangeSum& b) noexcept {
     RangeSum h;
-    h.lo = std::min(a.lo, b.lo), h.hi = std::max(a.hi, b.hi);
+    double alo, ahi, blo, bhi;
+    a.interval(x, alo, ahi);
+    b.interval(x, blo, bhi);
+    h.ilo = std::min(alo, blo), h.ihi = std::max(ahi, bhi);
     h.mag = a.mag + b.mag, h.cond = a.cond + b.cond, h.terms = a.terms + b.terms;
     h.ok = a.ok && b.ok;
     return h;
   }
 };
 
-/// The box a range is taken over, in double: its centre and a radius every point is within.
-struct RangeBox {
-  Aabb<double> box;
-  Vec3<double> c;
-  double rho;
-  template <class T> explicit RangeBox(const Aabb<T>& b) noexcept : box(Aabb<double>::from(b)) {
-    c = box.center();
-    rho = norm(box.extent()) * 0.5 * (1 + 1e-12);
-  }
-};
+/// Gradient of the solid angle of triangle (a, b, c) seen from p (as `solid_angle`): the sum over
+/// the edges (u, v) = (a - p, b - p), ... of (u × v) (|u| + |v|) / (|u| |v| (|u| |v| + u·v)), the
+/// field of a unit current around the triangle (Biot-Savart).
+inline Vec3<double> solid_angle_gradient(const Vec3<double>& p, const Vec3<double>& a,
+                                         const Vec3<double>& b, const Vec3<double>& c) noexcept {
+  const auto edge = [](const Vec3<double>& u, const Vec3<double>& v) {
+    const double lu = norm(u), lv = norm(v);
+    return cross(u, v) * ((lu + lv) / (lu * lv * (lu * lv + dot(u, v))));
+  };
+  return edge(a - p, b - p) + edge(b - p, c - p) + edge(c - p, a - p);
+}
 
-/// Adds the exact solid angle of triangle (a, b, c) over the box: its value at the centre plus or
-/// minus the radius times a gradient bound. |∇Ω| <= 2 area / d³ at distance d from the triangle
-/// (the kernel (y - p)·n / |y - p|³ has gradient (3 (r̂·n) r̂ - n) / |r|³, of norm <= 2 / |r|³), and
-/// every segment from the centre to a point of the box stays at least the distance d between the
-/// triangle's box and the box away. |Ω| <= area / d² bounds the value too.
+/// Adds the exact solid angle of triangle (a, b, c) as a model over the box. The solid angle is
+/// ∫ n·∇_p (1 / |y - p|) dA(y) over the triangle, so at distance >= d from it (every point of
+/// the box is at least the distance d between the triangle's box and the box away) its gradient
+/// is at most 2 area / d³ and its Hessian at most 6 area / d⁴: as multilinear forms on unit
+/// vectors, |∂ᵏ(1/r)| <= k! / r^(k+1) (a symmetric form is largest on equal arguments (Banach),
+/// and the k-th derivative of 1/r along a unit vector is ±k! P_k(cos θ) / r^(k+1), |P_k| <= 1).
 inline void add_triangle_range(RangeSum& s, const RangeBox& x, const Vec3<double>& a,
                                const Vec3<double>& b, const Vec3<double>& c) noexcept {
   constexpr double inv4pi = 0.07957747154594767;
@@ -136,11 +174,11 @@ inline void add_triangle_range(RangeSum& s, const RangeBox& x, const Vec3<double
   }
   const double area = 0.5 * norm(cross(b - a, c - a)) * (1 + 1e-12);
   const double w = solid_angle(x.c, a, b, c) * inv4pi;
-  const double var = x.rho * 2 * area / (d * d * d) * inv4pi * (1 + 1e-12);
-  const double cap = area / (d * d) * inv4pi * (1 + 1e-12);
-  const double lo = std::max(w - var, -cap), hi = std::min(w + var, cap);
-  s.lo += lo, s.hi += hi;
-  s.mag += std::max(std::abs(lo), std::abs(hi));
+  s.value += w;
+  s.grad += solid_angle_gradient(x.c, a, b, c) * inv4pi;
+  s.grad1 += 2 * area / (d * d * d) * inv4pi;
+  s.hess += 6 * area / (d * d * d * d) * inv4pi;
+  s.mag += std::abs(w) + x.rho * 2 * area / (d * d * d) * inv4pi;
   s.cond += 1 + norm(tb.extent()) / d;
   s.terms += 1;
 }
@@ -149,13 +187,16 @@ inline void add_triangle_range(RangeSum& s, const RangeBox& x, const Vec3<double
 /// terms, each computed with a few dozen roundings of at most `mag` (in precision `eps`, the
 /// evaluation's precision), accumulated one by one, then rounded to the output precision; the
 /// exact solid angles are computed in double, with an error that grows with size / distance.
-inline WindingRange finish_range(const RangeSum& s, double eps) noexcept {
+inline WindingRange finish_range(const RangeSum& s, const RangeBox& x, double eps) noexcept {
   WindingRange r;
-  if (!s.ok || !std::isfinite(s.lo) || !std::isfinite(s.hi)) return r;
+  if (!s.ok) return r;
+  double lo, hi;
+  s.interval(x, lo, hi);
+  if (!std::isfinite(lo) || !std::isfinite(hi)) return r;
   const double dbl = std::numeric_limits<double>::epsilon();
   const double margin = (double(s.terms) + 64) * eps * (s.mag + 1) + 1024 * dbl * s.cond;
-  r.lo = s.lo - margin;
-  r.hi = s.hi + margin;
+  r.lo = lo - margin;
+  r.hi = hi + margin;
   return r;
 }
 
@@ -174,9 +215,9 @@ WindingRange winding_range(const TriangleMesh<T>& mesh, const Aabb<T>& box) noex
                                Vec3<double>::from(mesh.corner(t, 2)));
   // The exact sum runs in double whatever T, then rounds once to T.
   const double eps = std::numeric_limits<double>::epsilon();
-  WindingRange r = detail::finish_range(s, eps);
+  WindingRange r = detail::finish_range(s, x, eps);
   const double out =
-      4 * double(std::numeric_limits<T>::epsilon()) * (std::abs(s.lo) + std::abs(s.hi) + 1);
+      4 * double(std::numeric_limits<T>::epsilon()) * (std::abs(r.lo) + std::abs(r.hi) + 1);
   r.lo -= out, r.hi += out;
   return r;
 }
@@ -319,7 +360,7 @@ template <class T, int K = 4> class FastWindingNumber {
       leaf_range(s, x, root.index, root.count);
     else if (root.is_inner())
       s = node_range(root.index, x);
-    return detail::finish_range(s, double(std::numeric_limits<T>::epsilon()));
+    return detail::finish_range(s, x, double(std::numeric_limits<T>::epsilon()));
   }
 
   double beta() const noexcept { return beta_; }
@@ -361,6 +402,72 @@ template <class T, int K = 4> class FastWindingNumber {
           {double(t[6 * n + i]), double(t[7 * n + i]), double(t[8 * n + i])});
   }
 
+  /// Adds the far field of child `k` of cluster node `c` over the box, at points farther than
+  /// sqrt(`far2_low`) from its centre and `dmin` from the box (`whole`: every point of the box).
+  /// With r = centre - p, the term is N·r / r³ + g(r) / r⁵, g = tr M r² - 3 rᵀ M r (`operator()`):
+  /// = -N·∇(1/r) - Σ M_ij ∂_ij(1/r): a model with gradient bound 2 |N| / r³ + 6 √3 |M| / r⁴ and
+  /// Hessian bound 6 |N| / r⁴ + 24 √3 |M| / r⁵ (|∂ᵏ(1/r)| <= k! / r^(k+1), `add_triangle_range`;
+  /// a contraction with M is at most its nuclear norm <= √3 |M|, the Frobenius norm); for some
+  /// points only (`whole` false) an interval capped by |term| <= |N| / r² + (|tr M| + 3 |M|) / r³.
+  void far_range(detail::RangeSum& fv, const detail::RangeBox& x, const WindingNode<T, K>& c, int k,
+                 bool whole, double dmin_raw, double far2_low) const noexcept {
+    constexpr double i4p = 0.07957747154594767;
+    const Vec3<double> ctr{double(c.cx[k]), double(c.cy[k]), double(c.cz[k])};
+    const double dmin = dmin_raw * (1 - 1e-12);
+    const double dlow = std::max(dmin, std::sqrt(far2_low) * (1 - 1e-12));
+    const Vec3<double> nn{double(c.nx[k]), double(c.ny[k]), double(c.nz[k])};
+    double mm[3][3], fro2 = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        mm[i][j] = double(c.m[3 * i + j][k]);
+        fro2 += mm[i][j] * mm[i][j];
+      }
+    const double tr = mm[0][0] + mm[1][1] + mm[2][2], fro = std::sqrt(fro2) * (1 + 1e-12);
+    const double nrm = norm(nn) * (1 + 1e-12);
+    if (!(dlow > 0)) {
+      fv.ok = false;
+      return;
+    }
+    // Intermediate magnitudes of the far-field formula: |N|/r², and Σ |M_ij| <= 3 |M|_F.
+    fv.mag = (nrm / (dlow * dlow) + (std::abs(tr) + 9 * fro) / (dlow * dlow * dlow)) * i4p;
+    fv.terms = 2; // the term and its share of the per-node sum
+    detail::RangeSum m;
+    if (dmin > 0) {
+      const Vec3<double> r = ctr - x.c;
+      const double r2 = dot(r, r), ir = 1 / std::sqrt(r2), ir2 = ir * ir;
+      const double ir3 = ir2 * ir, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
+      Vec3<double> mr{0, 0, 0}, mtr{0, 0, 0};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          mr[i] += mm[i][j] * r[j];
+          mtr[j] += mm[i][j] * r[i];
+        }
+      const double g = tr * r2 - 3 * dot(r, mr);
+      m.value = (dot(nn, r) * ir3 + g * ir5) * i4p;
+      // ∇_r of the term; ∇_p = -∇_r.
+      const Vec3<double> dg = r * (2 * tr) - (mr + mtr) * 3.0;
+      const Vec3<double> gr = nn * ir3 - r * (3 * dot(nn, r) * ir5) + dg * ir5 - r * (5 * g * ir7);
+      m.grad = gr * -i4p;
+      const double d3 = dmin * dmin * dmin, d4 = d3 * dmin;
+      m.grad1 = (2 * nrm / d3 + 10.4 * fro / d4) * i4p;
+      m.hess = (6 * nrm / d4 + 41.6 * fro / (d4 * dmin)) * i4p;
+    }
+    if (whole && dmin > 0) {
+      m.mag = fv.mag, m.terms = fv.terms;
+      fv = m;
+      return;
+    }
+    const double cap =
+        (nrm / (dlow * dlow) + (std::abs(tr) + 3 * fro) / (dlow * dlow * dlow)) * i4p * (1 + 1e-12);
+    double lo = -cap, hi = cap;
+    if (dmin > 0) {
+      double mlo, mhi;
+      m.interval(x, mlo, mhi);
+      lo = std::max(lo, mlo), hi = std::min(hi, mhi);
+    }
+    fv.ilo = lo, fv.ihi = hi;
+  }
+
   /// The interval of node `ni`'s children over the box (see `range_over`).
   detail::RangeSum node_range(std::uint32_t ni, const detail::RangeBox& x) const {
 
@@ -379,50 +486,7 @@ template <class T, int K = 4> class FastWindingNumber {
       const bool all_far = dmin2 * (1 - e) > far2;
       const bool all_near = dmax2 * (1 + e) <= far2;
       detail::RangeSum fv, nv;
-      if (!all_near) {
-        // Points that take the far field have r2 > far2 / (1 + e) and r >= dmin.
-        const double dmin = std::sqrt(dmin2) * (1 - 1e-12);
-        const double dlow = std::max(dmin, std::sqrt(far2 / (1 + e)) * (1 - 1e-12));
-        const Vec3<double> nn{double(c.nx[k]), double(c.ny[k]), double(c.nz[k])};
-        double mm[3][3], fro2 = 0;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) {
-            mm[i][j] = double(c.m[3 * i + j][k]);
-            fro2 += mm[i][j] * mm[i][j];
-          }
-        const double tr = mm[0][0] + mm[1][1] + mm[2][2], fro = std::sqrt(fro2) * (1 + 1e-12);
-        const double nrm = norm(nn) * (1 + 1e-12);
-        if (!(dlow > 0)) {
-          fv.ok = false;
-        } else {
-          // |N·r/|r|³| <= |N| / r², |Σ M_ij (δ_ij r² - 3 r_i r_j) / r⁵| <= (|tr M| + 3 |M|_F) / r³.
-          const double cap =
-              (nrm / (dlow * dlow) + (std::abs(tr) + 3 * fro) / (dlow * dlow * dlow)) * inv4pi *
-              (1 + 1e-12);
-          double lo = -cap, hi = cap;
-          if (dmin > 0) {
-            // Value at the centre, plus or minus rho times the gradient bound along segments that
-            // stay >= dmin from the cluster's centre: order 1: 2 |N| / r³; order 2 (f = g / r⁵,
-            // |g| <= (|tr M| + 3 |M|) r², |∇g| <= (2 |tr M| + 6 |M|) r): (7 |tr M| + 21 |M|) / r⁴.
-            const Vec3<double> rv = ctr - x.c;
-            const double r2 = dot(rv, rv), ir = 1 / std::sqrt(r2);
-            const Vec3<double> u = rv * ir;
-            double quad = 0;
-            for (int i = 0; i < 3; ++i)
-              for (int j = 0; j < 3; ++j) quad += u[i] * mm[i][j] * u[j];
-            const double v = (dot(nn, u) * ir * ir + (tr - 3 * quad) * ir * ir * ir) * inv4pi;
-            const double d3 = dmin * dmin * dmin;
-            const double grad =
-                (2 * nrm / d3 + (7 * std::abs(tr) + 21 * fro) / (d3 * dmin)) * inv4pi * (1 + 1e-12);
-            lo = std::max(lo, v - x.rho * grad - 1e-12 * cap);
-            hi = std::min(hi, v + x.rho * grad + 1e-12 * cap);
-          }
-          fv.lo = lo, fv.hi = hi;
-          // Intermediate magnitudes of the far-field formula: |N|/r², and Σ |M_ij| <= 3 |M|_F.
-          fv.mag = (nrm / (dlow * dlow) + (std::abs(tr) + 9 * fro) / (dlow * dlow * dlow)) * inv4pi;
-          fv.terms = 2; // the term and its share of the per-node sum
-        }
-      }
+      if (!all_near) far_range(fv, x, c, k, all_far, std::sqrt(dmin2), far2 / (1 + e));
       if (!all_far) {
         if (r.is_leaf())
           leaf_range(nv, x, r.index, r.count);
@@ -434,7 +498,7 @@ template <class T, int K = 4> class FastWindingNumber {
       else if (all_near)
         s.add(nv);
       else
-        s.add(detail::RangeSum::hull(fv, nv));
+        s.add(detail::RangeSum::hull(x, fv, nv));
     }
     return s;
   }
