@@ -3,7 +3,7 @@
 // libFuzzer target for JSON scene files (docs/scene-format.md): parsing (depth limit, duplicate
 // keys, numbers at the edges of float and double) and compiling into a program in float and
 // double, then evaluating it at a few points. The only allowed failure is an input error
-// (CliError with exit status 3) on one short line; anything else aborts. Mesh "path" keys are
+// (ToolError with exit status 3) on one short line; anything else aborts. Mesh "path" keys are
 // removed before compiling so that no file is read.
 #include <cstdint>
 #include <cstdio>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.hpp"
+#include "ebgeom/scene/scene.hpp"
 
 namespace {
 
@@ -22,8 +22,8 @@ void check(bool ok, const char* what) {
   }
 }
 
-void check_input_error(const ebgeom::cli::CliError& e) {
-  check(e.code == ebgeom::cli::exit_input, "scene errors are input errors (exit 3)");
+void check_input_error(const ebgeom::scene::ToolError& e) {
+  check(e.code == ebgeom::scene::exit_input, "scene errors are input errors (exit 3)");
   const std::string w = e.what();
   check(!w.empty(), "an error has a message");
   check(w.find('\n') == std::string::npos, "an error is one line");
@@ -32,7 +32,7 @@ void check_input_error(const ebgeom::cli::CliError& e) {
 
 /// Drops every "path" key and caps icosphere subdivisions at 3 (a fast run); the depth is at most
 /// max_json_depth after parsing.
-void drop_paths(ebgeom::cli::Json& j) {
+void drop_paths(ebgeom::scene::Json& j) {
   if (j.is_object()) {
     j.erase("path");
     if (auto s = j.find("subdivisions"); s != j.end() && s->is_number() && *s > 3) *s = 3;
@@ -42,14 +42,14 @@ void drop_paths(ebgeom::cli::Json& j) {
   }
 }
 
-template <class T> void compile_and_eval(const ebgeom::cli::Json& doc) {
+template <class T> void compile_and_eval(const ebgeom::scene::Json& doc) {
   using namespace ebgeom;
   try {
-    const cli::Program<T> prog = cli::compile_scene<T>(doc, "fuzz.json");
+    const scene::Program<T> prog = scene::compile_scene<T>(doc, "fuzz.json");
     const std::vector<Vec3<T>> pts = {{0, 0, 0}, {T(0.5), T(-1), T(2)}, {T(1e3), 0, 0}};
     std::vector<T> out(pts.size());
     prog.eval(Span<const Vec3<T>>(pts), Span<T>(out));
-  } catch (const cli::CliError& e) {
+  } catch (const scene::ToolError& e) {
     check_input_error(e);
   }
 }
@@ -60,10 +60,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace ebgeom;
   if (size > (1u << 20)) return 0;
   const std::string text(reinterpret_cast<const char*>(data), size);
-  cli::Json doc;
+  scene::Json doc;
   try {
-    doc = cli::parse_json_text(text, "fuzz.json");
-  } catch (const cli::CliError& e) {
+    doc = scene::parse_json_text(text, "fuzz.json");
+  } catch (const scene::ToolError& e) {
     check_input_error(e);
     return 0;
   }

@@ -9,7 +9,9 @@ Every `#include "ebgeom/..."` (or <ebgeom/...>) line in include/ebgeom must
     floors only point down, e.g. core/ includes nothing above core/, bvh/ never includes sdf/;
   - an umbrella header (include/ebgeom/<module>.hpp) follows its module's rule;
   - write the full path "ebgeom/<module>/<file>.hpp" (no relative includes);
-and the headers must not include each other in a cycle.
+and the headers must not include each other in a cycle. The library never includes the scene
+component (scene/), whose own sources include only "ebgeom/..." headers: the library's, or its own
+(scene/include/ebgeom/scene/), never a tool's.
 
 Usage: check-includes.py [REPO_ROOT]   (default: the folder above this script)
        check-includes.py --self-test    (checks that the checker catches violations)
@@ -105,6 +107,10 @@ def check(root):
                 if not target.startswith("ebgeom/"):
                     continue  # a standard or system header
                 trel = target[len("ebgeom/"):]
+                if trel.startswith("scene/"):
+                    errors.append("%s: includes %s: the header-only library may not use the scene "
+                                  "component (scene/)" % (where, target))
+                    continue
                 if trel not in headers:
                     errors.append("%s: includes %s, which does not exist" % (where, target))
                     continue
@@ -148,6 +154,40 @@ def check(root):
                 colour[nxt] = 1
                 stack.append((nxt, iter(graph[nxt])))
                 path.append(nxt)
+    return errors + check_scene(root, headers)
+
+
+SCENE_DIRS = ("scene/include", "scene/src", "scene/tests")
+
+
+def check_scene(root, headers):
+    """The scene component's includes: "ebgeom/..." headers of the library or of scene/include."""
+    errors = []
+    own = os.path.join(root, "scene", "include")
+    for top in SCENE_DIRS:
+        for dirpath, _, files in os.walk(os.path.join(root, top)):
+            for f in sorted(files):
+                if not f.endswith((".hpp", ".h", ".cpp")):
+                    continue
+                full = os.path.join(dirpath, f)
+                rel = os.path.relpath(full, root).replace(os.sep, "/")
+                with open(full, encoding="utf-8", errors="replace") as fh:
+                    for lineno, line in enumerate(fh, 1):
+                        m = INCLUDE_RE.match(line)
+                        if not m or m.group(1) != '"':
+                            continue
+                        target = m.group(2)
+                        where = "%s:%d" % (rel, lineno)
+                        if not target.startswith("ebgeom/"):
+                            if "/" in target or target.endswith((".hpp", ".h")):
+                                errors.append("%s: includes \"%s\"; the scene component includes "
+                                              "only \"ebgeom/...\" headers (the library's or "
+                                              "its own), never a tool's" % (where, target))
+                            continue
+                        if target[len("ebgeom/"):] not in headers and not os.path.isfile(
+                                os.path.join(own, target)):
+                            errors.append("%s: includes %s, which does not exist" %
+                                          (where, target))
     return errors
 
 
@@ -156,7 +196,8 @@ def self_test():
     def tree(files):
         d = tempfile.mkdtemp(prefix="ebgeom-includes-")
         for rel, text in files.items():
-            p = os.path.join(d, "include", "ebgeom", rel)
+            p = os.path.join(d, rel) if rel.startswith("scene/") else os.path.join(
+                d, "include", "ebgeom", rel)
             os.makedirs(os.path.dirname(p), exist_ok=True)
             with open(p, "w", encoding="utf-8") as fh:
                 fh.write(text)
@@ -174,6 +215,8 @@ def self_test():
         "sdf/mesh_sdf.hpp": inc % "bvh/wide_bvh.hpp" + inc % "core/vec.hpp",
         "sdf.hpp": inc % "sdf/mesh_sdf.hpp",
         "ebgeom.hpp": inc % "sdf.hpp" + inc % "bvh.hpp",
+        "scene/include/ebgeom/scene/scene.hpp": inc % "sdf/mesh_sdf.hpp",
+        "scene/src/scene.cpp": inc % "scene/scene.hpp",
     }
     bad = {
         "upward include from core": {"core/vec.hpp": inc % "sdf/mesh_sdf.hpp"},
@@ -192,6 +235,9 @@ def self_test():
             "mesh/point_in_polygon.hpp": inc % "geom/point_in_polygon.hpp",
             "geom/point_in_polygon.hpp": inc % "core/vec.hpp",
             "sdf/mesh_sdf.hpp": inc % "mesh/point_in_polygon.hpp"},
+        "library including the scene component": {"sdf/mesh_sdf.hpp": inc % "scene/scene.hpp"},
+        "scene component including a tool header": {"scene/src/scene.cpp": '#include "common.hpp"\n'},
+        "scene component including a missing header": {"scene/src/scene.cpp": inc % "scene/gone.hpp"},
     }
     failures = []
     d = tree(clean)

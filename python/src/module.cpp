@@ -3,8 +3,8 @@
 // The `ebgeom._ebgeom` extension: meshes, mesh SDFs, compiled scenes and grids over NumPy arrays.
 // The pure-Python package `ebgeom` (python/ebgeom) wraps it; see docs/python.md.
 //
-// The scene compiler, the grid rules and the mesh SDF are the command-line tool's own
-// (tools/ebgeom/scene.hpp, sdf_job.hpp, mesh_input.hpp), so a grid sampled here is the CLI's
+// The scene compiler, the grid rules and the mesh SDF are the command-line tool's own (the
+// scene component ebgeom/scene/, and tools/ebgeom/sdf_job.hpp), so a grid sampled here is the CLI's
 // grid bit for bit.
 
 #include <pybind11/numpy.h>
@@ -33,12 +33,12 @@
 #include "ebgeom/version.hpp"
 
 #include "common.hpp"
-#include "gltf/gltf.hpp"
-#include "mesh_input.hpp"
+#include "ebgeom/scene/gltf.hpp"
+#include "ebgeom/scene/mesh_input.hpp"
+#include "ebgeom/scene/program.hpp"
+#include "ebgeom/scene/scene.hpp"
 #include "mesh_report.hpp"
 #include "npz.hpp"
-#include "program.hpp"
-#include "scene.hpp"
 #include "sdf_job.hpp"
 
 namespace py = pybind11;

@@ -10,7 +10,7 @@
 #include "common.hpp"
 #include "ebgeom/eval/write_grid.hpp"
 #include "ebgeom/io/write_mesh.hpp"
-#include "mesh_input.hpp"
+#include "ebgeom/scene/mesh_input.hpp"
 
 namespace ebgeom::cli {
 

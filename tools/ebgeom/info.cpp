@@ -9,9 +9,9 @@
 
 #include "common.hpp"
 #include "ebgeom/mesh/validate.hpp"
-#include "mesh_input.hpp"
+#include "ebgeom/scene/mesh_input.hpp"
+#include "ebgeom/scene/scene.hpp"
 #include "mesh_report.hpp"
-#include "scene.hpp"
 
 namespace ebgeom::cli {
 

@@ -8,7 +8,7 @@
 #include <cstddef>
 
 #include "ebgeom/mesh/validate.hpp"
-#include "mesh_input.hpp"
+#include "ebgeom/scene/mesh_input.hpp"
 
 namespace ebgeom::cli {
 

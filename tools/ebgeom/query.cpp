@@ -12,11 +12,11 @@
 #include "common.hpp"
 #include "ebgeom/eval/evaluate.hpp"
 #include "ebgeom/eval/write_grid.hpp"
+#include "ebgeom/scene/scene.hpp"
 #include "grid_job.hpp"
 #include "npy.hpp"
 #include "number_options.hpp"
 #include "progress.hpp"
-#include "scene.hpp"
 
 namespace ebgeom::cli {
 

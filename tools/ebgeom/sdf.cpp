@@ -10,9 +10,9 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "ebgeom/scene/scene.hpp"
 #include "grid_job.hpp"
 #include "npz.hpp"
-#include "scene.hpp"
 #include "sdf_job.hpp"
 #include "vdb/vdb_output.hpp"
 

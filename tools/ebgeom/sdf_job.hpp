@@ -16,10 +16,10 @@
 
 #include "common.hpp"
 #include "ebgeom/eval/grid_spec.hpp"
-#include "mesh_input.hpp"
+#include "ebgeom/scene/mesh_input.hpp"
+#include "ebgeom/scene/program.hpp"
+#include "ebgeom/scene/scene.hpp"
 #include "number_options.hpp"
-#include "program.hpp"
-#include "scene.hpp"
 
 namespace ebgeom::cli {
 

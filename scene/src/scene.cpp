@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-#include "scene.hpp"
+#include "ebgeom/scene/scene.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace ebgeom::cli {
+namespace ebgeom::scene {
 
 namespace {
 
@@ -173,4 +173,4 @@ bool is_scene_path(const std::string& path) {
   return ext == ".json" || ext == ".JSON";
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::scene

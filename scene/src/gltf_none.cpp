@@ -3,10 +3,10 @@
 // glTF input in a build without tinygltf: a clear error saying how to get it.
 #include <cctype>
 
-#include "../common.hpp"
-#include "gltf.hpp"
+#include "ebgeom/scene/error.hpp"
+#include "ebgeom/scene/gltf.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::scene {
 
 bool gltf_available() { return false; }
 
@@ -18,4 +18,4 @@ PolygonSoup<double> read_gltf(const std::string& path) {
                        "PLY or STL first");
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::scene

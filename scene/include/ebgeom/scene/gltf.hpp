@@ -9,7 +9,7 @@
 
 #include "ebgeom/mesh/polygon_soup.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::scene {
 
 /// True when this build reads glTF.
 bool gltf_available();
@@ -23,7 +23,7 @@ bool is_gltf_path(const std::string& path);
 /// TRIANGLE_STRIP and TRIANGLE_FAN are read (points and lines are skipped); a node whose
 /// transform mirrors (negative determinant) gets its triangles reversed so they stay outward.
 /// POSITION must be float VEC3; indices unsigned byte, short or int (or none). Every accessor is
-/// checked against its buffer. Throws CliError (input) naming the file and the element at fault.
+/// checked against its buffer. Throws ToolError (input) naming the file and the element at fault.
 PolygonSoup<double> read_gltf(const std::string& path);
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::scene

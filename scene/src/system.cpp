@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-#include "common.hpp"
+#include "ebgeom/scene/system.hpp"
 
 #include "ebgeom/io/atomic_file.hpp"
 
@@ -15,7 +15,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace ebgeom::cli {
+namespace ebgeom::scene {
 
 std::uint64_t available_memory_bytes() {
   std::ifstream in("/proc/meminfo");
@@ -82,4 +82,4 @@ double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::scene

@@ -18,8 +18,8 @@
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
+#include "ebgeom/scene/mesh_input.hpp"
 #include "ebgeom/sdf/concepts.hpp"
-#include "mesh_input.hpp"
 
 #if __has_include("ebgeom/sdf/bvh_union.hpp")
 #include "ebgeom/sdf/bvh_union.hpp"
@@ -28,7 +28,7 @@
 #define EBGEOM_CLI_HAS_BVH_UNION 0
 #endif
 
-namespace ebgeom::cli {
+namespace ebgeom::scene {
 
 enum class Op : std::uint8_t {
   sphere,     // p: cx cy cz r
@@ -76,14 +76,14 @@ template <class T> struct Xform {
   }
 };
 
-namespace detail {
+namespace internal {
 template <class T> inline T smin(T a, T b, T k) noexcept {
   if (k <= T(0)) return std::min(a, b);
   const T h = std::max(k - std::abs(a - b), T(0)) / k;
   return std::min(a, b) - h * h * k * T(0.25);
 }
 template <class T> inline T smax(T a, T b, T k) noexcept { return -smin(-a, -b, k); }
-} // namespace detail
+} // namespace internal
 
 template <class T> class Program;
 
@@ -278,11 +278,11 @@ template <class T> class Program {
         for (std::uint32_t c = 1; c < ins.n; ++c) {
           const T* other = first + c * stride;
           if (ins.op == Op::unite)
-            for (std::size_t i = 0; i < n; ++i) first[i] = detail::smin(first[i], other[i], k);
+            for (std::size_t i = 0; i < n; ++i) first[i] = internal::smin(first[i], other[i], k);
           else if (ins.op == Op::intersect)
-            for (std::size_t i = 0; i < n; ++i) first[i] = detail::smax(first[i], other[i], k);
+            for (std::size_t i = 0; i < n; ++i) first[i] = internal::smax(first[i], other[i], k);
           else
-            for (std::size_t i = 0; i < n; ++i) first[i] = detail::smax(first[i], -other[i], k);
+            for (std::size_t i = 0; i < n; ++i) first[i] = internal::smax(first[i], -other[i], k);
         }
         vt -= ins.n - 1;
         break;
@@ -315,4 +315,4 @@ template <class T> class Program {
   }
 };
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::scene

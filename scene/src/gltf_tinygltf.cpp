@@ -13,10 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "../common.hpp"
-#include "gltf.hpp"
+#include "ebgeom/scene/error.hpp"
+#include "ebgeom/scene/gltf.hpp"
+#include "ebgeom/scene/system.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::scene {
 
 namespace {
 
@@ -293,4 +294,4 @@ PolygonSoup<double> read_gltf(const std::string& path) {
   return GltfReader(path, model).read();
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::scene

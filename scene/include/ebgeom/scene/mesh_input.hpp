@@ -12,10 +12,10 @@
 #include <type_traits>
 #include <utility>
 
-#include "common.hpp"
 #include "ebgeom/mesh/polygon_soup.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
-#include "gltf/gltf.hpp"
+#include "ebgeom/scene/error.hpp"
+#include "ebgeom/scene/gltf.hpp"
 
 #include "ebgeom/io/read_mesh.hpp"
 #include "ebgeom/sdf/mesh_sdf.hpp"
@@ -23,14 +23,14 @@
 
 #define EBGEOM_CLI_HAS_BVH 1
 
-namespace ebgeom::cli {
+namespace ebgeom::scene {
 
 /// How the sign of a mesh SDF is decided (`--sign`, scene key "sign"): the library's
 /// `ebgeom::SignMode` (sdf/signed_mesh_sdf.hpp).
 using ebgeom::SignMode;
 
 /// Parses a --sign / "sign" value with the library's name table (`ebgeom::parse_sign_mode`:
-/// pseudonormal, winding, fast-winding, unsigned or auto). Throws CliError(`code`) prefixed by
+/// pseudonormal, winding, fast-winding, unsigned or auto). Throws ToolError(`code`) prefixed by
 /// `where`.
 inline SignMode parse_sign_mode(const std::string& s, int code, const std::string& where) {
   Result<SignMode> m = ebgeom::parse_sign_mode(s);
@@ -104,7 +104,7 @@ template <class T> const char* precision_name() noexcept {
 }
 
 /// Reads a mesh file (STL, PLY, OBJ, OFF, legacy VTK; format detected by content), or a glTF 2.0
-/// file by its extension (.gltf, .glb: `read_gltf`). Throws CliError (input) with the reader's
+/// file by its extension (.gltf, .glb: `read_gltf`). Throws ToolError (input) with the reader's
 /// `FILE: line/byte: what` message.
 template <class T> PolygonSoup<T> load_mesh(const std::string& path) {
   if (is_gltf_path(path)) {
@@ -131,7 +131,7 @@ template <class T> PolygonSoup<T> load_mesh(const std::string& path) {
   return std::move(*soup);
 }
 
-/// Builds the CLI's mesh SDF with sign mode `sign`. Throws CliError (input) naming `path` on
+/// Builds the CLI's mesh SDF with sign mode `sign`. Throws ToolError (input) naming `path` on
 /// failure.
 template <class T>
 CliMeshSdf<T> build_mesh_sdf(const PolygonSoup<T>& soup, const std::string& path,
@@ -155,4 +155,4 @@ CliMeshSdf<T> build_mesh_sdf(const PolygonSoup<T>& soup, const std::string& path
   return std::move(*sdf);
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::scene

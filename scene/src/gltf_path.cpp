@@ -3,9 +3,9 @@
 // `is_gltf_path`, the same with or without tinygltf.
 #include <cctype>
 
-#include "gltf.hpp"
+#include "ebgeom/scene/gltf.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::scene {
 
 bool is_gltf_path(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
@@ -15,4 +15,4 @@ bool is_gltf_path(const std::string& path) {
   return ext == "gltf" || ext == "glb";
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::scene

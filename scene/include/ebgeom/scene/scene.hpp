@@ -22,12 +22,12 @@
 #include <utility>
 #include <vector>
 
-#include "common.hpp"
 #include "ebgeom/mesh/generate.hpp"
-#include "mesh_input.hpp"
-#include "program.hpp"
+#include "ebgeom/scene/error.hpp"
+#include "ebgeom/scene/mesh_input.hpp"
+#include "ebgeom/scene/program.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::scene {
 
 using Json = nlohmann::json;
 
@@ -36,10 +36,10 @@ inline constexpr std::size_t max_json_depth = 1000;
 
 /// Parses JSON text read from `path` (named in messages). A first, non-recursive pass rejects
 /// nesting deeper than `max_json_depth` and duplicate object keys, so every later recursive walk
-/// is bounded. Throws CliError (input): `FILE: line L, column C: what` (one short line).
+/// is bounded. Throws ToolError (input): `FILE: line L, column C: what` (one short line).
 Json parse_json_text(const std::string& text, const std::string& path);
 
-/// Reads and parses a JSON file (`parse_json_text`). Throws CliError (input).
+/// Reads and parses a JSON file (`parse_json_text`). Throws ToolError (input).
 Json read_json_file(const std::string& path);
 
 /// `s` cut to at most `max` characters with "..." in the middle (long JSON pointers, keys).
@@ -85,7 +85,7 @@ inline void print_mesh_signs(const SceneInfo& info) {
                 m.source.c_str(), to_string(m.used), m.reason.c_str());
 }
 
-namespace detail {
+namespace internal {
 
 /// Appends the JSON text of `j` to `out` until `out` holds more than `budget` characters: O(budget)
 /// work whatever the size of `j` (no full dump of a large or deep value).
@@ -578,15 +578,15 @@ template <class T> class SceneCompiler {
   static constexpr std::size_t max_depth = 200;
 };
 
-} // namespace detail
+} // namespace internal
 
 /// Compiles the scene `doc` (read from `file`, used in messages and to resolve relative mesh
-/// paths) into a program. Throws CliError (input) naming the offending JSON pointer.
+/// paths) into a program. Throws ToolError (input) naming the offending JSON pointer.
 template <class T>
 Program<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* info = nullptr) {
   Program<T> prog;
   SceneInfo si;
-  detail::SceneCompiler<T> c(file, prog, si);
+  internal::SceneCompiler<T> c(file, prog, si);
   const Json* root = &doc;
   std::string ptr;
   if (doc.is_object() && doc.contains("root")) {
@@ -596,7 +596,7 @@ Program<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* in
         c.bad("/" + it.key(), "unknown top-level key (expected root, version, description)");
     if (doc.contains("version") && doc["version"] != 1)
       c.bad("/version",
-            "unsupported scene version " + detail::describe(doc["version"]) + " (expected 1)");
+            "unsupported scene version " + internal::describe(doc["version"]) + " (expected 1)");
     root = &doc["root"];
     ptr = "/root";
   }
@@ -626,4 +626,4 @@ Program<T> mesh_program(const std::string& path, SignMode sign, PolygonSoup<T>* 
   return prog;
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::scene
