@@ -540,7 +540,7 @@ class SparseGrid:
 
     The arrays are read-only views of the C++ grid (no copy; copy them to modify).
     ``to_dense()`` gives the ``Grid`` that ``sample_grid(..., band=W)`` gives; ``save(path)``
-    writes .npz (the CLI's file, byte for byte).
+    writes .npz (the CLI's file, byte for byte) or .vdb (the CLI's OpenVDB level set).
 
     >>> band = ebgeom.sample_grid(sdf, res=2048, band=3, sparse=True)
     >>> band.blocks.shape, band.memory_bytes          # kept tiles, bytes held
@@ -592,9 +592,10 @@ class SparseGrid:
                     self.band)
 
     def save(self, path: PathLike) -> None:
-        """Writes the band as the CLI's sparse .npz (``path`` ends in .npz), byte for byte; read
-        it with ``numpy.load``. For .vti, .npy or .raw, ``to_dense().save(path)``; for an OpenVDB
-        level set, the CLI (``ebgeom sdf INPUT -o OUT.vdb --band W``)."""
+        """Writes the band by extension as ``ebgeom sdf -o OUT --band W`` does: .npz (the CLI's
+        sparse .npz, byte for byte; read it with ``numpy.load``) or .vdb (an OpenVDB level set,
+        when the package was built with OpenVDB: ``ebgeom._ebgeom.vdb_available()``). For .vti,
+        .npy or .raw, ``to_dense().save(path)``."""
         self._impl.save(_os.fspath(path))
 
     def __repr__(self) -> str:

@@ -40,6 +40,7 @@
 #include "mesh_report.hpp"
 #include "npz.hpp"
 #include "sdf_job.hpp"
+#include "vdb/vdb_output.hpp"
 
 namespace py = pybind11;
 using namespace ebgeom;
@@ -705,20 +706,25 @@ template <class T> py::array to_dense_as(const SparseGrid<T>& g) {
   return std::move(out);
 }
 
-/// Writes a sparse grid as `ebgeom sdf -o OUT.npz --band W` does.
+/// Writes a sparse grid as `ebgeom sdf -o OUT.npz --band W` (or OUT.vdb) does.
 void save_sparse_py(const Sparse& s, const std::string& path) {
-  if (!cli::is_npz_path(path))
+  const bool vdb = cli::is_vdb_path(path);
+  if (!cli::is_npz_path(path) && !vdb)
+    throw py::value_error(path + ": a sparse grid is saved as .npz (the narrow band's tiles) or "
+                                 ".vdb (an OpenVDB level set); for .vti, .npy or .raw save "
+                                 "to_dense()");
+  if (vdb && !cli::vdb_available())
     throw py::value_error(
-        path + (path.size() > 4 && path.compare(path.size() - 4, 4, ".vdb") == 0
-                    ? ": the Python package does not write OpenVDB files; save the band as .npz, "
-                      "or write the level set with the command-line tool (ebgeom sdf INPUT -o "
-                      "OUT.vdb --band W)"
-                    : ": a sparse grid is saved as .npz (the narrow band's tiles); for .vti, "
-                      ".npy or .raw save to_dense()"));
+        path + ": this ebgeom package was built without OpenVDB; install it (Debian: "
+               "libopenvdb-dev libboost-iostreams-dev) and reinstall with "
+               "EBGEOM_CMAKE_ARGS=-DEBGEOM_BUILD_CLI=ON, save the band as .npz, or write the level "
+               "set with the command-line tool (ebgeom sdf INPUT -o OUT.vdb --band W)");
   Result<std::uint64_t> ok = std::uint64_t(0);
   {
     py::gil_scoped_release nogil;
-    ok = s.visit([&](const auto& g) { return cli::write_sparse_npz(path, g); });
+    ok = s.visit([&](const auto& g) {
+      return vdb ? cli::write_vdb(path, g) : cli::write_sparse_npz(path, g);
+    });
   }
   if (!ok) {
     PyErr_SetString(ok.error().code == ErrorCode::io ? PyExc_OSError : PyExc_ValueError,
@@ -996,6 +1002,7 @@ PYBIND11_MODULE(_ebgeom, m) {
         py::arg("pad"), py::arg("nodes"));
   m.def("available_memory", &cli::available_memory_bytes,
         "Bytes of memory available to this process (0 when unknown), as the CLI reads it.");
+  m.def("vdb_available", &cli::vdb_available, "True when this build writes OpenVDB files.");
   m.def("save_grid", &save_grid_py, py::arg("path"), py::arg("values"), py::arg("box"),
         py::arg("centering"));
   (void)value_error;

@@ -181,11 +181,22 @@ def test_sparse_errors(tmp_path):
         ebgeom.sample_grid(s, res=(1 << 21, 1 << 21, 1 << 20), band=1)
 
 
-def test_sparse_vdb_says_how(tmp_path):
-    g = ebgeom.sample_grid(ebgeom.sphere(1.0).compile("float"), res=16, band=2, sparse=True)
-    with pytest.raises(ValueError, match=r"OpenVDB.*-o OUT.vdb --band W"):
-        g.save(tmp_path / "g.vdb")
-    assert not (tmp_path / "g.vdb").exists()
+@pytest.mark.parametrize("precision", ["float", "double"])
+def test_sparse_vdb_as_the_cli(tmp_path, cli, shifted_sphere, precision):
+    g = ebgeom.sample_grid(ebgeom.MeshSdf(shifted_sphere, precision=precision), res=40, band=2,
+                           sparse=True)
+    if not ebgeom._ebgeom.vdb_available():
+        with pytest.raises(ValueError, match=r"without OpenVDB.*-o OUT.vdb --band W"):
+            g.save(tmp_path / "g.vdb")
+        assert not (tmp_path / "g.vdb").exists()
+        return
+    subprocess.run([cli, "sdf", shifted_sphere, "-o", str(tmp_path / "cli.vdb"), "--res", "40",
+                    "--band", "2", "--precision", precision, "-q"], check=True)
+    g.save(tmp_path / "py.vdb")
+    mine, ref = (tmp_path / "py.vdb").read_bytes(), (tmp_path / "cli.vdb").read_bytes()
+    assert mine[:4] == b" BDV" and len(mine) == len(ref)
+    # equal but for the file's UUID (36 characters after the 21-byte header)
+    assert mine[:21] == ref[:21] and mine[57:] == ref[57:]
 
 
 def test_dense_npz_byte_for_byte_with_cli(tmp_path, cli, shifted_sphere):
