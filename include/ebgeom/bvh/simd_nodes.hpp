@@ -8,13 +8,26 @@
 /// instructions), so these overloads, more specialised than the generic templates, take over
 /// when the compiler targets the instruction set. Same values as the generic loops (max/min of
 /// non-NaN operands are exact; ±0 squares to +0); the generic code remains the reference and the
-/// fallback on other targets.
+/// fallback on other targets. The dispatched kernels (`core/isa.hpp`) reach the AVX forms through
+/// `detail::node_dist2<I>` whatever the translation unit's flags.
+
+#include <type_traits>
 
 #include "ebgeom/bvh/wide_bvh.hpp"
+#include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/isa.hpp"
 
-#if defined(__SSE2__) || defined(__AVX__)
+#if defined(__SSE2__) || defined(__AVX__) || EBGEOM_ISA_DISPATCH
 #include <immintrin.h>
 #endif
+
+namespace ebgeom::bvh::detail {
+/// True for the node types with an AVX form of the child distances.
+template <class T, int K, class BV>
+inline constexpr bool has_avx_form = std::is_same_v<BV, Aabb<T>> &&
+                                     ((std::is_same_v<T, float> && K == 8) ||
+                                      (std::is_same_v<T, double> && K == 4));
+} // namespace ebgeom::bvh::detail
 
 namespace ebgeom::bvh {
 
@@ -47,9 +60,13 @@ EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<float, 4>& n, const Vec3
 }
 #endif
 
-#if defined(__AVX__)
-EBGEOM_FORCE_INLINE void child_dist2(const WideNode<float, 8>& n, const Vec3<float>& p,
-                                     float (&d2)[8]) noexcept {
+namespace detail {
+#if EBGEOM_ISA_DISPATCH || defined(__AVX__)
+// The AVX forms (K = 8 floats, K = 4 doubles). Not forced inline, with the AVX target attribute:
+// they inline into the dispatched AVX2 / AVX-512 kernels, and into every caller when the
+// translation unit itself targets AVX.
+EBGEOM_TARGET_AVX inline void child_dist2_avx(const WideNode<float, 8>& n, const Vec3<float>& p,
+                                              float (&d2)[8]) noexcept {
   const __m256 z = _mm256_setzero_ps();
   const __m256 px = _mm256_set1_ps(p.x), py = _mm256_set1_ps(p.y), pz = _mm256_set1_ps(p.z);
   const __m256 dx = _mm256_max_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_loadu_ps(n.lo_x), px),
@@ -65,8 +82,8 @@ EBGEOM_FORCE_INLINE void child_dist2(const WideNode<float, 8>& n, const Vec3<flo
                                      _mm256_mul_ps(dz, dz)));
 }
 
-EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<float, 8>& n, const Vec3<float>& p,
-                                         float (&d2)[8]) noexcept {
+EBGEOM_TARGET_AVX inline void child_far_dist2_avx(const WideNode<float, 8>& n, const Vec3<float>& p,
+                                                  float (&d2)[8]) noexcept {
   const __m256 px = _mm256_set1_ps(p.x), py = _mm256_set1_ps(p.y), pz = _mm256_set1_ps(p.z);
   const __m256 dx = _mm256_max_ps(_mm256_sub_ps(px, _mm256_loadu_ps(n.lo_x)),
                                   _mm256_sub_ps(_mm256_loadu_ps(n.hi_x), px));
@@ -78,8 +95,8 @@ EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<float, 8>& n, const Vec3
                                      _mm256_mul_ps(dz, dz)));
 }
 
-EBGEOM_FORCE_INLINE void child_dist2(const WideNode<double, 4>& n, const Vec3<double>& p,
-                                     double (&d2)[4]) noexcept {
+EBGEOM_TARGET_AVX inline void child_dist2_avx(const WideNode<double, 4>& n, const Vec3<double>& p,
+                                              double (&d2)[4]) noexcept {
   const __m256d z = _mm256_setzero_pd();
   const __m256d px = _mm256_set1_pd(p.x), py = _mm256_set1_pd(p.y), pz = _mm256_set1_pd(p.z);
   const __m256d dx = _mm256_max_pd(_mm256_max_pd(_mm256_sub_pd(_mm256_loadu_pd(n.lo_x), px),
@@ -95,8 +112,8 @@ EBGEOM_FORCE_INLINE void child_dist2(const WideNode<double, 4>& n, const Vec3<do
                                      _mm256_mul_pd(dz, dz)));
 }
 
-EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<double, 4>& n, const Vec3<double>& p,
-                                         double (&d2)[4]) noexcept {
+EBGEOM_TARGET_AVX inline void child_far_dist2_avx(const WideNode<double, 4>& n,
+                                                  const Vec3<double>& p, double (&d2)[4]) noexcept {
   const __m256d px = _mm256_set1_pd(p.x), py = _mm256_set1_pd(p.y), pz = _mm256_set1_pd(p.z);
   const __m256d dx = _mm256_max_pd(_mm256_sub_pd(px, _mm256_loadu_pd(n.lo_x)),
                                    _mm256_sub_pd(_mm256_loadu_pd(n.hi_x), px));
@@ -106,6 +123,49 @@ EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<double, 4>& n, const Vec
                                    _mm256_sub_pd(_mm256_loadu_pd(n.hi_z), pz));
   _mm256_storeu_pd(d2, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
                                      _mm256_mul_pd(dz, dz)));
+}
+
+#endif
+
+/// `child_dist2` as the kernels of instruction set I compute it: the AVX forms where I (or the
+/// translation unit) has AVX, else the overloads above or the generic loops. Same values.
+template <Isa I, class T, int K, class BV>
+EBGEOM_FORCE_INLINE void node_dist2(const WideNode<T, K, BV>& n, const Vec3<T>& p,
+                                    T (&d2)[K]) noexcept {
+#if EBGEOM_ISA_DISPATCH
+  if constexpr (I >= Isa::avx2 && has_avx_form<T, K, BV>) return child_dist2_avx(n, p, d2);
+#endif
+  child_dist2(n, p, d2);
+}
+
+/// `child_far_dist2` as the kernels of instruction set I compute it (see `node_dist2`).
+template <Isa I, class T, int K, class BV>
+EBGEOM_FORCE_INLINE void node_far_dist2(const WideNode<T, K, BV>& n, const Vec3<T>& p,
+                                        T (&d2)[K]) noexcept {
+#if EBGEOM_ISA_DISPATCH
+  if constexpr (I >= Isa::avx2 && has_avx_form<T, K, BV>) return child_far_dist2_avx(n, p, d2);
+#endif
+  child_far_dist2(n, p, d2);
+}
+} // namespace detail
+
+#if defined(__AVX__)
+// The translation unit targets AVX: the AVX forms for every caller.
+EBGEOM_FORCE_INLINE void child_dist2(const WideNode<float, 8>& n, const Vec3<float>& p,
+                                     float (&d2)[8]) noexcept {
+  detail::child_dist2_avx(n, p, d2);
+}
+EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<float, 8>& n, const Vec3<float>& p,
+                                         float (&d2)[8]) noexcept {
+  detail::child_far_dist2_avx(n, p, d2);
+}
+EBGEOM_FORCE_INLINE void child_dist2(const WideNode<double, 4>& n, const Vec3<double>& p,
+                                     double (&d2)[4]) noexcept {
+  detail::child_dist2_avx(n, p, d2);
+}
+EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<double, 4>& n, const Vec3<double>& p,
+                                         double (&d2)[4]) noexcept {
+  detail::child_far_dist2_avx(n, p, d2);
 }
 #endif
 

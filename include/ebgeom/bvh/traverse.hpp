@@ -30,6 +30,7 @@
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
+#include "ebgeom/core/isa.hpp"
 #include "ebgeom/core/vec.hpp"
 
 namespace ebgeom::bvh {
@@ -100,11 +101,12 @@ template <class T> inline std::uint32_t distance_key(T d2) noexcept {
 /// The key of a child that `order_children` leaves out: above every (distance key << 32 | k).
 inline constexpr std::uint64_t excluded_key = 0x7fffffffffffffffu;
 
-#if defined(__AVX2__)
+#if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
 /// One layer of compare-exchanges: each lane meets `partner` (its pair's other key); the lanes
 /// whose 32-bit halves are set in `HiDwords` keep the larger key, the others the smaller.
 template <int HiDwords>
-EBGEOM_FORCE_INLINE __m256i compare_exchange4(__m256i x, __m256i partner) noexcept {
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256i compare_exchange4(__m256i x,
+                                                                 __m256i partner) noexcept {
   const __m256i gt = _mm256_cmpgt_epi64(x, partner);
   const __m256i lo = _mm256_blendv_epi8(x, partner, gt), hi = _mm256_blendv_epi8(partner, x, gt);
   return _mm256_blend_epi32(lo, hi, HiDwords);
@@ -114,14 +116,14 @@ EBGEOM_FORCE_INLINE __m256i compare_exchange4(__m256i x, __m256i partner) noexce
 /// scalar code (float rounding, sign cleared, child in the low bits) and sorted by the optimal
 /// 4-input network (0,1)(2,3) (0,2)(1,3) (1,2), each layer one permute, one compare and three
 /// blends. Identical keys and order to the scalar network (all keys are distinct).
-EBGEOM_FORCE_INLINE __m256i sort4_keys(__m256i v) noexcept {
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256i sort4_keys(__m256i v) noexcept {
   v = compare_exchange4<0xcc>(v, _mm256_permute4x64_epi64(v, 0xb1));    // (0,1) (2,3): [1 0 3 2]
   v = compare_exchange4<0xf0>(v, _mm256_permute4x64_epi64(v, 0x4e));    // (0,2) (1,3): [2 3 0 1]
   return compare_exchange4<0x30>(v, _mm256_permute4x64_epi64(v, 0xd8)); // (1,2): [0 2 1 3]
 }
 
 /// The four children's keys: `distance_key(d2[k]) << 32 | k` where `in`, else `excluded_key`.
-EBGEOM_FORCE_INLINE __m256i child_keys4(__m128 f, __m256i in) noexcept {
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256i child_keys4(__m128 f, __m256i in) noexcept {
   const __m128i bits = _mm_and_si128(_mm_castps_si128(f), _mm_set1_epi32(0x7fffffff));
   const __m256i k = _mm256_or_si256(_mm256_slli_epi64(_mm256_cvtepu32_epi64(bits), 32),
                                     _mm256_setr_epi64x(0, 1, 2, 3));
@@ -132,8 +134,10 @@ EBGEOM_FORCE_INLINE int bit_count4(int b) noexcept {
   return (b & 1) + ((b >> 1) & 1) + ((b >> 2) & 1) + ((b >> 3) & 1);
 }
 
-EBGEOM_FORCE_INLINE int order_children4(const double (&d2)[4], double lim,
-                                        std::uint64_t (&key)[4]) noexcept {
+// Not forced inline: they inline into the dispatched AVX2 / AVX-512 kernels (or into every
+// caller when the translation unit targets AVX2).
+EBGEOM_TARGET_AVX2 inline int order_children4(const double (&d2)[4], double lim,
+                                              std::uint64_t (&key)[4]) noexcept {
   const __m256d d = _mm256_loadu_pd(d2);
   const __m256d in = _mm256_cmp_pd(d, _mm256_set1_pd(lim), _CMP_LT_OQ);
   const __m256i k = child_keys4(_mm256_cvtpd_ps(d), _mm256_castpd_si256(in));
@@ -141,8 +145,8 @@ EBGEOM_FORCE_INLINE int order_children4(const double (&d2)[4], double lim,
   return bit_count4(_mm256_movemask_pd(in));
 }
 
-EBGEOM_FORCE_INLINE int order_children4(const float (&d2)[4], float lim,
-                                        std::uint64_t (&key)[4]) noexcept {
+EBGEOM_TARGET_AVX2 inline int order_children4(const float (&d2)[4], float lim,
+                                              std::uint64_t (&key)[4]) noexcept {
   const __m128 d = _mm_loadu_ps(d2);
   const __m128 in = _mm_cmplt_ps(d, _mm_set1_ps(lim));
   const __m256i k = child_keys4(d, _mm256_cvtepi32_epi64(_mm_castps_si128(in)));
@@ -154,11 +158,12 @@ EBGEOM_FORCE_INLINE int order_children4(const float (&d2)[4], float lim,
 /// Sorts the children with `d2[k] < lim` nearest first into `key` ((distance key << 32) | k, the
 /// others last as `excluded_key`) with a branch-free odd-even transposition network, and returns
 /// their count. Replaces an insertion sort whose data-dependent branches mispredicted at every
-/// node. K = 4 with AVX2 takes the vector network above (same keys, same order).
-template <class T, int K>
+/// node. K = 4 on instruction set I with AVX2 takes the vector network above (same keys, same
+/// order).
+template <class T, int K, Isa I = native_isa>
 inline int order_children(const T (&d2)[K], T lim, std::uint64_t (&key)[K]) noexcept {
-#if defined(__AVX2__)
-  if constexpr (K == 4 && (std::is_same_v<T, float> || std::is_same_v<T, double>))
+#if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
+  if constexpr (I >= Isa::avx2 && K == 4 && (std::is_same_v<T, float> || std::is_same_v<T, double>))
     return order_children4(d2, lim, key);
 #endif
   int m = 0;
@@ -181,7 +186,8 @@ inline int order_children(const T (&d2)[K], T lim, std::uint64_t (&key)[K]) noex
 /// the final best squared distance the leaf callback reported.
 /// A point with a NaN or infinite coordinate visits nothing (`best2` is left as it was): its box
 /// distances are NaN or inf - inf, which would otherwise select empty children.
-template <bool Shrink = false, class T, int K, class BV, class LeafFn>
+/// `I`: the instruction set of the box tests (`core/isa.hpp`; the caller's kernel target).
+template <bool Shrink = false, Isa I = native_isa, class T, int K, class BV, class LeafFn>
 void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf,
              T abs_slack = T(0)) noexcept {
   if (bvh.root.is_empty() || !all_finite(p)) return;
@@ -202,10 +208,10 @@ void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& 
     } else {
       const auto& n = bvh.nodes[cur.index];
       T d2[K];
-      child_dist2(n, p, d2);
+      detail::node_dist2<I>(n, p, d2);
       if (Shrink && shrink) {
         T far2[K];
-        child_far_dist2(n, p, far2);
+        detail::node_far_dist2<I>(n, p, far2);
         T m = best2;
         for (int k = 0; k < K; ++k) m = std::min(m, shrink_bound(far2[k]));
         best2 = m;
@@ -215,7 +221,7 @@ void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& 
       // far to near.
       const T lim = prune_limit(best2, abs_slack);
       std::uint64_t key[K];
-      const int m = detail::order_children<T, K>(d2, lim, key);
+      const int m = detail::order_children<T, K, I>(d2, lim, key);
       if (m > 0) {
         for (int j = m - 1; j > 0; --j) {
           const int k = int(key[j] & 0xffu);

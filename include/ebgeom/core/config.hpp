@@ -12,16 +12,25 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define EBGEOM_FORCE_INLINE inline __attribute__((always_inline))
+/// On a kernel: inline every call in it, recursively (its callees then compile for its target).
+#define EBGEOM_FLATTEN __attribute__((flatten))
+/// On a kernel with its own options (`EBGEOM_VECTOR_KERNEL`): never inlined, so that `flatten`
+/// callers do not compile it with theirs.
+#define EBGEOM_NOINLINE __attribute__((noinline))
 #define EBGEOM_LIKELY(x) __builtin_expect(!!(x), 1)
 #define EBGEOM_UNLIKELY(x) __builtin_expect(!!(x), 0)
 #define EBGEOM_RESTRICT __restrict__
 #elif defined(_MSC_VER)
 #define EBGEOM_FORCE_INLINE __forceinline
+#define EBGEOM_FLATTEN
+#define EBGEOM_NOINLINE __declspec(noinline)
 #define EBGEOM_LIKELY(x) (x)
 #define EBGEOM_UNLIKELY(x) (x)
 #define EBGEOM_RESTRICT __restrict
 #else
 #define EBGEOM_FORCE_INLINE inline
+#define EBGEOM_FLATTEN
+#define EBGEOM_NOINLINE
 #define EBGEOM_LIKELY(x) (x)
 #define EBGEOM_UNLIKELY(x) (x)
 #define EBGEOM_RESTRICT

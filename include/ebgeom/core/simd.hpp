@@ -4,16 +4,18 @@
 /// \file
 /// SIMD helpers shared by the vector kernels: per-lane bit masks of a W-wide block (`LaneMask`,
 /// `detail::lane_mask`), the minimum over a block's lanes (`lane_min`), the lowest set bit and a
-/// prefetch hint. Where the target has AVX / AVX-512 the masks come from vector compares; the
-/// plain loops are the reference and the fallback, with the same results.
+/// prefetch hint. On instruction sets with AVX / AVX-512 (the template argument `I`, see
+/// `core/isa.hpp`) the masks come from vector compares; the plain loops are the reference and the
+/// fallback, with the same results.
 
 #include <cstdint>
 #include <limits>
 #include <type_traits>
 
 #include "ebgeom/core/config.hpp"
+#include "ebgeom/core/isa.hpp"
 
-#if defined(__SSE2__) || defined(__AVX__)
+#if defined(__SSE2__) || defined(__AVX__) || EBGEOM_ISA_DISPATCH
 #include <immintrin.h>
 #endif
 
@@ -41,42 +43,42 @@ template <int W> using LaneMask = std::conditional_t<(W > 32), std::uint64_t, st
 namespace detail {
 enum class LaneCmp { le, eq };
 
-/// Bytes per register with which `lane_mask` compares W values of T: 64 with AVX-512, 32 with AVX
-/// (W values filling whole registers), else 0 (the plain loop).
-template <class T, int W> constexpr int lane_mask_register_bytes() noexcept {
+/// Bytes per register with which `lane_mask` compares W values of T on instruction set I: 64 with
+/// AVX-512, 32 with AVX2 (W values filling whole registers), else 0 (the plain loop).
+template <class T, int W, Isa I> constexpr int lane_mask_register_bytes() noexcept {
   if constexpr (!std::is_same_v<T, float> && !std::is_same_v<T, double>) return 0;
-#if defined(__AVX512F__)
-  if (W * sizeof(T) % 64 == 0) return 64;
-#endif
-#if defined(__AVX__)
-  if (W * sizeof(T) % 32 == 0) return 32;
+#if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
+  if (I == Isa::avx512 && W * sizeof(T) % 64 == 0) return 64;
+  if (I >= Isa::avx2 && W * sizeof(T) % 32 == 0) return 32;
 #endif
   return 0;
 }
 
-#if defined(__AVX__)
-/// `lane_mask` of the Bytes / sizeof(T) values at `v`: one compare, into a mask register with
-/// AVX-512, or followed by `movemask` with AVX.
-template <int Bytes, LaneCmp C, class T>
-EBGEOM_FORCE_INLINE std::uint32_t register_mask(const T* v, T b) noexcept {
+#if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
+/// `lane_mask` of the 32 / sizeof(T) values at `v`: a compare and a `movemask`. Not forced inline
+/// (an AVX function inlines only into AVX code): it inlines into the kernels of the same target
+/// and options (`EBGEOM_VECTOR_KERNEL`) that call it.
+template <LaneCmp C, class T>
+EBGEOM_TARGET_AVX2 EBGEOM_VECTOR_KERNEL inline std::uint32_t register_mask_avx(const T* v,
+                                                                               T b) noexcept {
   constexpr int pred = C == LaneCmp::le ? _CMP_LE_OQ : _CMP_EQ_OQ;
-#if defined(__AVX512F__)
-  if constexpr (Bytes == 64) {
-    if constexpr (sizeof(T) == 8)
-      return _mm512_cmp_pd_mask(_mm512_loadu_pd(v), _mm512_set1_pd(b), pred);
-    else
-      return _mm512_cmp_ps_mask(_mm512_loadu_ps(v), _mm512_set1_ps(b), pred);
-  }
+  if constexpr (sizeof(T) == 8)
+    return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(_mm256_loadu_pd(v), _mm256_set1_pd(b), pred)));
+  else
+    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(v), _mm256_set1_ps(b), pred)));
+}
 #endif
-  if constexpr (Bytes == 32) {
-    if constexpr (sizeof(T) == 8)
-      return unsigned(
-          _mm256_movemask_pd(_mm256_cmp_pd(_mm256_loadu_pd(v), _mm256_set1_pd(b), pred)));
-    else
-      return unsigned(
-          _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(v), _mm256_set1_ps(b), pred)));
-  }
-  return 0; // not reached: `lane_mask_register_bytes` gives 64 or 32 here
+
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+/// `lane_mask` of the 64 / sizeof(T) values at `v`: one compare into a mask register.
+template <LaneCmp C, class T>
+EBGEOM_TARGET_AVX512 EBGEOM_VECTOR_KERNEL inline std::uint32_t register_mask_avx512(const T* v,
+                                                                                    T b) noexcept {
+  constexpr int pred = C == LaneCmp::le ? _CMP_LE_OQ : _CMP_EQ_OQ;
+  if constexpr (sizeof(T) == 8)
+    return _mm512_cmp_pd_mask(_mm512_loadu_pd(v), _mm512_set1_pd(b), pred);
+  else
+    return _mm512_cmp_ps_mask(_mm512_loadu_ps(v), _mm512_set1_ps(b), pred);
 }
 #endif
 
@@ -84,19 +86,25 @@ EBGEOM_FORCE_INLINE std::uint32_t register_mask(const T* v, T b) noexcept {
 /// C++ comparisons. GCC 12 builds such a mask from vector compares with shifts, ors and shuffles
 /// (with `lane_min`, 11% of a double ogre query's profile); with AVX-512 one compare gives it (a
 /// mask register), with AVX a compare and a `movemask`. The plain loop is the reference and the
-/// fallback.
-template <LaneCmp C, class T, int W>
+/// fallback. `I`: the instruction set of the calling kernel (`core/isa.hpp`).
+template <LaneCmp C, Isa I = native_isa, class T, int W>
 EBGEOM_FORCE_INLINE LaneMask<W> lane_mask(const T (&v)[W], T b) noexcept {
   LaneMask<W> mask = 0;
-#if defined(__AVX__)
-  constexpr int bytes = lane_mask_register_bytes<T, W>();
+  constexpr int bytes = lane_mask_register_bytes<T, W, I>();
   if constexpr (bytes > 0) {
     constexpr int n = bytes / int(sizeof(T)); // lanes per register
-    for (int r = 0; r < W / n; ++r)
-      mask |= LaneMask<W>(register_mask<bytes, C>(v + r * n, b)) << (r * n);
+    for (int r = 0; r < W / n; ++r) {
+      std::uint32_t m = 0;
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+      if constexpr (bytes == 64) m = register_mask_avx512<C>(v + r * n, b);
+#endif
+#if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
+      if constexpr (bytes == 32) m = register_mask_avx<C>(v + r * n, b);
+#endif
+      mask |= LaneMask<W>(m) << (r * n);
+    }
     return mask;
   }
-#endif
   for (int l = 0; l < W; ++l) mask |= LaneMask<W>(C == LaneCmp::le ? v[l] <= b : v[l] == b) << l;
   return mask;
 }
@@ -112,7 +120,7 @@ template <class T, int W> struct LaneMin {
 /// instead of W dependent scalar steps (those were a sixth of a mesh query). Exact: the minimum
 /// does not depend on the order. A NaN lane counts as +infinity (a NaN distance never wins, as in
 /// the brute force's `d2 < best2`) and hides no other lane.
-template <class T, int W>
+template <class T, int W, Isa I = native_isa>
 EBGEOM_VECTOR_KERNEL inline LaneMin<T, W> lane_min(const T (&v)[W]) noexcept {
   T u[W], t[W];
   for (int l = 0; l < W; ++l) u[l] = v[l] == v[l] ? v[l] : std::numeric_limits<T>::infinity();
@@ -137,7 +145,7 @@ EBGEOM_VECTOR_KERNEL inline LaneMin<T, W> lane_min(const T (&v)[W]) noexcept {
     }
   }
   const T m = t[0];
-  return {m, detail::lane_mask<detail::LaneCmp::eq>(u, m)};
+  return {m, detail::lane_mask<detail::LaneCmp::eq, I>(u, m)};
 }
 
 namespace detail {

@@ -16,6 +16,7 @@
 #include <limits>
 
 #include "ebgeom/core/config.hpp"
+#include "ebgeom/core/isa.hpp"
 #include "ebgeom/core/simd.hpp"
 #include "ebgeom/core/vec.hpp"
 
@@ -120,24 +121,7 @@ block_distance2_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T (&out)[W]) n
 }
 } // namespace detail
 
-template <class T, int W>
-EBGEOM_VECTOR_KERNEL inline void block_distance2(const TriBlock<T, W>& t, const Vec3<T>& p,
-                                                 T (&out)[W]) noexcept {
-  detail::block_distance2_inline(t, p, out);
-}
-
-/// The lanes of a block that can lower a search bound: `lane_min` of `block_distance2(t, p)` when
-/// some lane is at squared distance <= `b2`, else `mask == 0` (most blocks a search scans; one
-/// vector compare decides it). One out-of-line call.
-template <class T, int W>
-EBGEOM_VECTOR_KERNEL inline LaneMin<T, W> block_min(const TriBlock<T, W>& t, const Vec3<T>& p,
-                                                    T b2) noexcept {
-  T d2[W];
-  detail::block_distance2_inline(t, p, d2);
-  if (detail::lane_mask<detail::LaneCmp::le>(d2, b2) == 0) return {b2, 0};
-  return lane_min<T, W>(d2);
-}
-
+namespace detail {
 /// Supporting planes of a block's triangles seen from `p`: for each lane, the unit normal `n` of
 /// the plane through the triangle's closest point `c` to `p`, perpendicular to `p - c`, and `off
 /// = n · c`. The triangle (convex) lies in the half-space n · x <= off, so `n · x - off` is a lower
@@ -145,9 +129,9 @@ EBGEOM_VECTOR_KERNEL inline LaneMin<T, W> block_min(const TriBlock<T, W>& t, con
 /// `p` on the triangle get n = 0 and off = -inf... no bound (`n · x - off = -inf`). Approximate
 /// (callers add margins); same case analysis as `block_distance2`.
 template <class T, int W>
-EBGEOM_VECTOR_KERNEL inline void block_planes(const TriBlock<T, W>& t, const Vec3<T>& p,
-                                              T (&onx)[W], T (&ony)[W], T (&onz)[W],
-                                              T (&ooff)[W]) noexcept {
+EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE void
+block_planes_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T (&onx)[W], T (&ony)[W],
+                    T (&onz)[W], T (&ooff)[W]) noexcept {
   T rx[W], ry[W], rz[W], ro[W];
   for (int l = 0; l < W; ++l) {
     const T ax = t.ax[l], ay = t.ay[l], az = t.az[l];
@@ -199,6 +183,72 @@ EBGEOM_VECTOR_KERNEL inline void block_planes(const TriBlock<T, W>& t, const Vec
     ro[l] = g2 > T(0) ? rx[l] * qx + ry[l] * qy + rz[l] * qz : std::numeric_limits<T>::infinity();
   }
   for (int l = 0; l < W; ++l) onx[l] = rx[l], ony[l] = ry[l], onz[l] = rz[l], ooff[l] = ro[l];
+}
+
+/// `block_min`'s body on instruction set I, always inlined into a kernel of the same options.
+template <class T, int W, Isa I>
+EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE LaneMin<T, W>
+block_min_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T b2) noexcept {
+  T d2[W];
+  block_distance2_inline(t, p, d2);
+  if (lane_mask<LaneCmp::le, I>(d2, b2) == 0) return {b2, 0};
+  return lane_min<T, W, I>(d2);
+}
+
+/// The block kernels compiled for instruction set I (`core/isa.hpp`): one out-of-line function
+/// per kernel and block, with the target's attribute, so the loops vectorise for that target.
+#define EBGEOM_TRI_BLOCK_KERNELS(I, TARGET)                                                        \
+  template <class T, int W>                                                                        \
+  TARGET EBGEOM_VECTOR_KERNEL EBGEOM_NOINLINE static void block_distance2(                         \
+      const TriBlock<T, W>& t, const Vec3<T>& p, T(&out)[W]) noexcept {                            \
+    block_distance2_inline(t, p, out);                                                             \
+  }                                                                                                \
+  template <class T, int W>                                                                        \
+  TARGET EBGEOM_VECTOR_KERNEL EBGEOM_NOINLINE static LaneMin<T, W> block_min(                      \
+      const TriBlock<T, W>& t, const Vec3<T>& p, T b2) noexcept {                                  \
+    return block_min_inline<T, W, I>(t, p, b2);                                                    \
+  }                                                                                                \
+  template <class T, int W>                                                                        \
+  TARGET EBGEOM_VECTOR_KERNEL EBGEOM_NOINLINE static void block_planes(                            \
+      const TriBlock<T, W>& t, const Vec3<T>& p, T(&nx)[W], T(&ny)[W], T(&nz)[W],                  \
+      T(&off)[W]) noexcept {                                                                       \
+    block_planes_inline(t, p, nx, ny, nz, off);                                                    \
+  }
+
+/// The translation unit's own flags (`Isa::baseline`, or `native_isa` without dispatch).
+template <Isa I> struct TriBlockKernels { EBGEOM_TRI_BLOCK_KERNELS(I, ) };
+#if EBGEOM_ISA_DISPATCH
+template <> struct TriBlockKernels<Isa::avx2> {
+  EBGEOM_TRI_BLOCK_KERNELS(Isa::avx2, EBGEOM_TARGET_AVX2)
+};
+template <> struct TriBlockKernels<Isa::avx512> {
+  EBGEOM_TRI_BLOCK_KERNELS(Isa::avx512, EBGEOM_TARGET_AVX512)
+};
+#endif
+#undef EBGEOM_TRI_BLOCK_KERNELS
+} // namespace detail
+
+/// Squared distances from `p` to the triangles of a block (see `detail::block_distance2_inline`),
+/// on instruction set I.
+template <class T, int W, Isa I = native_isa>
+inline void block_distance2(const TriBlock<T, W>& t, const Vec3<T>& p, T (&out)[W]) noexcept {
+  detail::TriBlockKernels<I>::block_distance2(t, p, out);
+}
+
+/// The lanes of a block that can lower a search bound: `lane_min` of `block_distance2(t, p)` when
+/// some lane is at squared distance <= `b2`, else `mask == 0` (most blocks a search scans; one
+/// vector compare decides it). One out-of-line call, on instruction set I.
+template <class T, int W, Isa I = native_isa>
+inline LaneMin<T, W> block_min(const TriBlock<T, W>& t, const Vec3<T>& p, T b2) noexcept {
+  return detail::TriBlockKernels<I>::block_min(t, p, b2);
+}
+
+/// Supporting planes of a block's triangles seen from `p` (see `detail::block_planes_inline`), on
+/// instruction set I.
+template <class T, int W, Isa I = native_isa>
+inline void block_planes(const TriBlock<T, W>& t, const Vec3<T>& p, T (&onx)[W], T (&ony)[W],
+                         T (&onz)[W], T (&ooff)[W]) noexcept {
+  detail::TriBlockKernels<I>::block_planes(t, p, onx, ony, onz, ooff);
 }
 
 } // namespace ebgeom

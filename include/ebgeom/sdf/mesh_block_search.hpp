@@ -13,6 +13,7 @@
 #include "ebgeom/bvh/traverse.hpp"
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/config.hpp"
+#include "ebgeom/core/isa.hpp"
 #include "ebgeom/core/simd.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/geom/tri_block.hpp"
@@ -27,24 +28,27 @@ template <class T, int K, int W> struct BlockSearch {
   const std::uint32_t* tri;
   T slack;
 
-  /// Nearest triangle slot (block lane) by squared distance; `best2` is the initial bound.
+  /// Nearest triangle slot (block lane) by squared distance; `best2` is the initial bound. `I`: the
+  /// instruction set of the kernels (`core/isa.hpp`); `MeshSearchKernels<I>` compiles it for I.
+  template <Isa I = native_isa>
   void nearest_slot(const Vec3<T>& p, T& best2, std::uint32_t& best) const noexcept {
-    bvh::nearest<true>(
+    bvh::nearest<true, I>(
         *bvh, p, best2,
         [&](std::uint32_t first_block, std::uint32_t count, T& b2) noexcept {
-          scan_blocks(first_block, count, p, b2, best);
+          scan_blocks<I>(first_block, count, p, b2, best);
         },
         slack);
   }
 
   /// Scans blocks [first, first + ceil(count / W)) at `p`, lowering `b2`/`best` (ties: lowest
   /// triangle index, as the brute force).
+  template <Isa I = native_isa>
   EBGEOM_FORCE_INLINE void scan_blocks(std::uint32_t first_block, std::uint32_t count,
                                        const Vec3<T>& p, T& b2,
                                        std::uint32_t& best) const noexcept {
     const std::uint32_t nb = (count + std::uint32_t(W) - 1) / std::uint32_t(W);
     for (std::uint32_t i = 0; i < nb; ++i) {
-      const LaneMin<T, W> lm = block_min(blocks[first_block + i], p, b2);
+      const LaneMin<T, W> lm = block_min<T, W, I>(blocks[first_block + i], p, b2);
       // No lane can win, or only tie with no best yet (as the brute force, which keeps the first
       // triangle strictly below the initial bound).
       if (lm.mask == 0 || !(lm.min < b2 || best != bvh::ChildRef::none)) continue;
@@ -59,5 +63,26 @@ template <class T, int K, int W> struct BlockSearch {
     }
   }
 };
+
+/// The nearest-slot search compiled for instruction set I: the traversal, box tests and block
+/// scans all in one function with I's target attribute (`flatten` inlines the traversal into it),
+/// calling the block kernel `TriBlockKernels<I>::block_min` once per block.
+#define EBGEOM_MESH_SEARCH_KERNELS(I, TARGET)                                                      \
+  template <class T, int K, int W>                                                                 \
+  TARGET EBGEOM_FLATTEN static void nearest_slot(const BlockSearch<T, K, W>& s, const Vec3<T>& p,  \
+                                                 T& best2, std::uint32_t& best) noexcept {         \
+    s.template nearest_slot<I>(p, best2, best);                                                    \
+  }
+
+template <Isa I> struct MeshSearchKernels { EBGEOM_MESH_SEARCH_KERNELS(I, ) };
+#if EBGEOM_ISA_DISPATCH
+template <> struct MeshSearchKernels<Isa::avx2> {
+  EBGEOM_MESH_SEARCH_KERNELS(Isa::avx2, EBGEOM_TARGET_AVX2)
+};
+template <> struct MeshSearchKernels<Isa::avx512> {
+  EBGEOM_MESH_SEARCH_KERNELS(Isa::avx512, EBGEOM_TARGET_AVX512)
+};
+#endif
+#undef EBGEOM_MESH_SEARCH_KERNELS
 
 } // namespace ebgeom::detail

@@ -27,6 +27,7 @@
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
+#include "ebgeom/core/isa.hpp"
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
@@ -165,9 +166,10 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
         for (std::size_t i = 0; i < n; ++i) out[i] = (*this)(pts[i]);
         return;
       }
-    const std::vector<std::uint32_t> slot =
-        detail::MeshTileEval<T, K, W>(block_search(), plane_margin_)
-            .nearest_slots(pts.data(), dims);
+    const std::vector<std::uint32_t> slot = with_active_isa([&](auto isa) {
+      return detail::MeshTileEval<T, K, W, decltype(isa)::value>(block_search(), plane_margin_)
+          .nearest_slots(pts.data(), dims);
+    });
     for (std::size_t l = 0; l < n; ++l) out[l] = finish(pts[l], slot[l]).distance;
   }
 
@@ -269,8 +271,12 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     return {&bvh_, blocks_.data(), block_tri_.data(), slack_};
   }
 
+  /// The search with the kernels of the active instruction set (`core/isa.hpp`).
   void nearest_slot(const Vec3<T>& p, T& best2, std::uint32_t& best) const noexcept {
-    block_search().nearest_slot(p, best2, best);
+    const detail::BlockSearch<T, K, W> s = block_search();
+    with_active_isa([&](auto isa) {
+      detail::MeshSearchKernels<decltype(isa)::value>::nearest_slot(s, p, best2, best);
+    });
   }
 
   MeshClosestPoint<T> closest_search(const Vec3<T>& p, T bound2) const noexcept {

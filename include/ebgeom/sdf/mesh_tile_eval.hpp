@@ -20,6 +20,7 @@
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
+#include "ebgeom/core/isa.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/geom/tri_block.hpp"
 #include "ebgeom/sdf/mesh_block_search.hpp"
@@ -27,12 +28,13 @@
 namespace ebgeom {
 
 /// Squared distances from `p` to `n` boxes stored as structure of arrays (`lo_x[i]`, ...).
+namespace detail {
 template <class T>
-EBGEOM_VECTOR_KERNEL inline void
-boxes_distance2(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,
-                const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx,
-                const T* EBGEOM_RESTRICT hy, const T* EBGEOM_RESTRICT hz, const Vec3<T>& p,
-                T* EBGEOM_RESTRICT out) noexcept {
+EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE void
+boxes_distance2_inline(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,
+                       const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx,
+                       const T* EBGEOM_RESTRICT hy, const T* EBGEOM_RESTRICT hz, const Vec3<T>& p,
+                       T* EBGEOM_RESTRICT out) noexcept {
   const T px = p.x, py = p.y, pz = p.z;
   // Ternaries, not std::max: the kernel's optimisation attribute keeps std::max from inlining.
   for (std::size_t i = 0; i < n; ++i) {
@@ -43,12 +45,25 @@ boxes_distance2(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_REST
     out[i] = ax * ax + ay * ay + az * az;
   }
 }
+} // namespace detail
+
+template <class T>
+EBGEOM_VECTOR_KERNEL inline void
+boxes_distance2(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,
+                const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx,
+                const T* EBGEOM_RESTRICT hy, const T* EBGEOM_RESTRICT hz, const Vec3<T>& p,
+                T* EBGEOM_RESTRICT out) noexcept {
+  detail::boxes_distance2_inline(n, lx, ly, lz, hx, hy, hz, p, out);
+}
 
 namespace detail {
 
+template <Isa I> struct MeshTileKernels;
+
 /// Nearest slots of the samples of a tile (see the file comment) over a `BlockSearch`, with the
-/// absolute error bound of supporting planes `plane_margin` (`MeshSdf::plane_margin`).
-template <class T, int K, int W> class MeshTileEval {
+/// absolute error bound of supporting planes `plane_margin` (`MeshSdf::plane_margin`), with the
+/// kernels of instruction set I (`core/isa.hpp`).
+template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
  public:
   MeshTileEval(const BlockSearch<T, K, W>& s, T plane_margin) noexcept
       : s_(s), plane_margin_(plane_margin) {}
@@ -67,6 +82,8 @@ template <class T, int K, int W> class MeshTileEval {
   }
 
  private:
+  template <Isa> friend struct MeshTileKernels;
+
   /// Candidate leaves of a tile (or part of one), structure of arrays (boxes padded with empty ones
   /// to a multiple of 16 so the box-distance loop has no remainder).
   struct LeafList {
@@ -161,14 +178,14 @@ template <class T, int K, int W> class MeshTileEval {
 
   /// Nearest slot of `p` among the leaves of `list` (a superset of the leaves the per-point
   /// search needs), starting from the block of slot `seed` (or none).
-  std::uint32_t scan_list(const LeafList& list, LeafList& pl, const Vec3<T>& p, std::uint32_t seed,
-                          std::vector<T>& d2s) const noexcept {
+  std::uint32_t scan_list_inline(const LeafList& list, LeafList& pl, const Vec3<T>& p,
+                                 std::uint32_t seed, std::vector<T>& d2s) const noexcept {
     T b2 = std::numeric_limits<T>::infinity();
     std::uint32_t best = bvh::ChildRef::none;
     std::uint32_t seed_block = bvh::ChildRef::none;
     if (seed != bvh::ChildRef::none) {
       seed_block = seed / std::uint32_t(W);
-      s_.scan_blocks(seed_block, std::uint32_t(W), p, b2, best);
+      s_.template scan_blocks<I>(seed_block, std::uint32_t(W), p, b2, best);
     }
     const std::size_t n = list.size(), np = list.lo_x.size();
     T* EBGEOM_RESTRICT d2 = d2s.data();
@@ -178,7 +195,7 @@ template <class T, int K, int W> class MeshTileEval {
     const T* EBGEOM_RESTRICT hx = list.hi_x.data();
     const T* EBGEOM_RESTRICT hy = list.hi_y.data();
     const T* EBGEOM_RESTRICT hz = list.hi_z.data();
-    boxes_distance2(np, lx, ly, lz, hx, hy, hz, p, d2);
+    MeshTileKernels<I>::boxes_distance2(np, lx, ly, lz, hx, hy, hz, p, d2);
     // Supporting planes bound each triangle's distance from below (`block_planes`). Rounding: the
     // planes carry errors of a few ulps of the coordinates (`plane_margin_`) and the kernel's
     // squared distances those `prune_limit` allows for; the margins exceed both.
@@ -207,13 +224,13 @@ template <class T, int K, int W> class MeshTileEval {
           lb = std::min(lb, nx[l] * p.x + ny[l] * p.y + nz[l] * p.z - of[l]);
         if (lb > r) continue;
       }
-      s_.scan_blocks(list.first[i], list.count[i], p, b2, best);
+      s_.template scan_blocks<I>(list.first[i], list.count[i], p, b2, best);
       if (list.count[i] <= std::uint32_t(W) && !pl.planes[j]) {
         T(&nx)[W] = *reinterpret_cast<T(*)[W]>(pl.pnx.data() + j * W);
         T(&ny)[W] = *reinterpret_cast<T(*)[W]>(pl.pny.data() + j * W);
         T(&nz)[W] = *reinterpret_cast<T(*)[W]>(pl.pnz.data() + j * W);
         T(&of)[W] = *reinterpret_cast<T(*)[W]>(pl.poff.data() + j * W);
-        block_planes(s_.blocks[list.first[i]], p, nx, ny, nz, of);
+        block_planes<T, W, I>(s_.blocks[list.first[i]], p, nx, ny, nz, of);
         pl.planes[j] = 1;
       }
       lim = bvh::prune_limit(b2, s_.slack);
@@ -242,17 +259,18 @@ template <class T, int K, int W> class MeshTileEval {
       if (parent == nullptr) {
         T b2 = std::numeric_limits<T>::infinity();
         std::uint32_t best = bvh::ChildRef::none;
-        s_.nearest_slot(q, b2, best);
+        MeshSearchKernels<I>::nearest_slot(s_, q, b2, best);
         job.slot[qi] = best;
       } else {
-        job.slot[qi] = scan_list(*parent, job.lists[0], q, job.last, job.d2);
+        job.slot[qi] =
+            MeshTileKernels<I>::scan_list(*this, *parent, job.lists[0], q, job.last, job.d2);
       }
       job.last = job.slot[qi];
     }
     {
       T dq2 = std::numeric_limits<T>::infinity();
       std::uint32_t dummy = bvh::ChildRef::none;
-      s_.scan_blocks(job.slot[qi] / std::uint32_t(W), std::uint32_t(W), q, dq2, dummy);
+      s_.template scan_blocks<I>(job.slot[qi] / std::uint32_t(W), std::uint32_t(W), q, dq2, dummy);
       const T eps = std::numeric_limits<T>::epsilon();
       const T u = (std::sqrt(dq2) + std::sqrt(box.max_distance2(q))) * (T(1) + T(64) * eps);
       const T lim2 = bvh::prune_limit(u * u, s_.slack);
@@ -290,7 +308,8 @@ template <class T, int K, int W> class MeshTileEval {
         for (std::size_t x = a[0]; x < b[0]; ++x) {
           const std::size_t l = index(x, y, z);
           if (job.slot[l] != bvh::ChildRef::none) continue;
-          job.slot[l] = scan_list(list, job.lists[0], job.pts[l], job.last, job.d2);
+          job.slot[l] = MeshTileKernels<I>::scan_list(*this, list, job.lists[0], job.pts[l],
+                                                      job.last, job.d2);
           job.last = job.slot[l];
         }
   }
@@ -300,6 +319,34 @@ template <class T, int K, int W> class MeshTileEval {
   BlockSearch<T, K, W> s_;
   T plane_margin_;
 };
+
+/// The per-sample scan of tile evaluation and its box test compiled for instruction set I
+/// (`flatten` inlines the scan's block scans into one function with I's target attribute).
+#define EBGEOM_MESH_TILE_KERNELS(I, TARGET)                                                        \
+  template <class T>                                                                               \
+  TARGET EBGEOM_VECTOR_KERNEL EBGEOM_NOINLINE static void boxes_distance2(                         \
+      std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,                     \
+      const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx, const T* EBGEOM_RESTRICT hy,       \
+      const T* EBGEOM_RESTRICT hz, const Vec3<T>& p, T* EBGEOM_RESTRICT out) noexcept {            \
+    boxes_distance2_inline(n, lx, ly, lz, hx, hy, hz, p, out);                                     \
+  }                                                                                                \
+  template <class E, class List, class T>                                                          \
+  TARGET EBGEOM_FLATTEN static std::uint32_t scan_list(const E& e, const List& list, List& pl,     \
+                                                       const Vec3<T>& p, std::uint32_t seed,       \
+                                                       std::vector<T>& d2s) noexcept {             \
+    return e.scan_list_inline(list, pl, p, seed, d2s);                                             \
+  }
+
+template <Isa I> struct MeshTileKernels { EBGEOM_MESH_TILE_KERNELS(I, ) };
+#if EBGEOM_ISA_DISPATCH
+template <> struct MeshTileKernels<Isa::avx2> {
+  EBGEOM_MESH_TILE_KERNELS(Isa::avx2, EBGEOM_TARGET_AVX2)
+};
+template <> struct MeshTileKernels<Isa::avx512> {
+  EBGEOM_MESH_TILE_KERNELS(Isa::avx512, EBGEOM_TARGET_AVX512)
+};
+#endif
+#undef EBGEOM_MESH_TILE_KERNELS
 
 } // namespace detail
 } // namespace ebgeom
