@@ -10,7 +10,10 @@
 #  2. compiles integrations/amrex/mesh_sdf (3D and 2D) and integrations/chombo/mesh_sdf (3D);
 #  3. runs the sphere at 32^3, R = 0.3 in the unit cube through ebgeom and through each code's own
 #     SphereIF: cut cells and fluid volume must be equal, and 1,760 cut cells in 3D; then a closed
-#     mesh from ../shared/meshes (the dodecahedron) with the `dodecahedron` preset.
+#     mesh from ../shared/meshes (the dodecahedron) with the `dodecahedron` preset. Each ebgeom
+#     case runs twice, with ebgeom's whole-box evaluation (AMReX: ebgeom::make_amrex_shop;
+#     Chombo: the adapter's InsideOutside hook) and without it (every node per point): the
+#     results must be equal.
 #
 # Usage: scripts/check-couplings.sh [--quick] [--cache DIR] [--jobs N] [--amrex-only|--chombo-only]
 #   --quick   only compile the two adapters' examples against the real headers (AMReX is
@@ -102,7 +105,7 @@ compare() {
   if [ -z "$mine" ] || [ -z "$ref" ]; then fail "$label: no result line (see $2, $3)"; return; fi
   read -r cut vol <<<"$mine"
   read -r rcut rvol <<<"$ref"
-  say "$label: ebgeom $cut cut cells, volume $vol; the code's own sphere $rcut, $rvol"
+  say "$label: $cut cut cells, volume $vol; reference $rcut, $rvol"
   [ "$cut" = "$rcut" ] || fail "$label: cut cells differ ($cut vs $rcut)"
   awk -v a="$vol" -v b="$rvol" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 1e-12 * (b < 0 ? -b : b) + 1e-15) }' ||
     fail "$label: fluid volumes differ ($vol vs $rvol)"
@@ -157,6 +160,8 @@ amrex_full() { # <dim>
     touch "$idir/.complete"
   fi
   say "AMReX ${dim}D: compiling integrations/amrex/mesh_sdf [$(elapsed)]"
+  # a fresh build folder: one configured from another checkout would be refused by CMake
+  rm -rf "$ebuild"
   cmake -S "$ROOT/integrations/amrex/mesh_sdf" -B "$ebuild" -DAMReX_ROOT="$idir" \
     -DCMAKE_CXX_COMPILER="$CXX" >"$ebuild.configure.log" 2>&1 ||
     { tail -n 30 "$ebuild.configure.log" >&2; fail "AMReX ${dim}D: example configure failed"; return; }
@@ -171,19 +176,29 @@ amrex_full() { # <dim>
       mesh_sdf.n_cell=32 mesh_sdf.sphere_radius=0.3 mesh_sdf.plotfile="plt-$g") >"$run/$g.log" 2>&1 ||
       fail "AMReX ${dim}D: $g run failed ($run/$g.log)"
   done
+  # ebgeom's sphere through AMReX's own GeometryShop too (every node per point): the same EB
+  (cd "$run" && "$exe" "$ROOT/integrations/amrex/mesh_sdf/inputs" mesh_sdf.which_geom=sphere \
+    mesh_sdf.eb_shop=amrex mesh_sdf.n_cell=32 mesh_sdf.sphere_radius=0.3 mesh_sdf.plotfile=plt-s2) \
+    >"$run/sphere-amrex-shop.log" 2>&1 || fail "AMReX ${dim}D: sphere run with AMReX's shop failed"
   if [ "$dim" = 3 ]; then
     compare "AMReX 3D sphere 32^3" "$run/sphere.log" "$run/amrex_sphere.log" 1760
+    compare "AMReX 3D sphere 32^3, AMReX's shop" "$run/sphere-amrex-shop.log" "$run/amrex_sphere.log" 1760
     if [ -f "$DODECA" ]; then
-      (cd "$run" && "$exe" "$ROOT/integrations/amrex/mesh_sdf/inputs" mesh_sdf.which_geom=dodecahedron \
-        mesh_sdf.file="$DODECA" mesh_sdf.n_cell=32 mesh_sdf.plotfile=plt-dodeca) >"$run/dodeca.log" 2>&1 &&
-        grep -qE '^mesh_sdf: [1-9][0-9]* cut cells' "$run/dodeca.log" &&
-        say "AMReX 3D dodecahedron: $(result_of "$run/dodeca.log" | awk '{print $1}') cut cells" ||
-        fail "AMReX 3D: the dodecahedron run failed ($run/dodeca.log)"
+      for shop in ebgeom amrex; do
+        (cd "$run" && "$exe" "$ROOT/integrations/amrex/mesh_sdf/inputs" mesh_sdf.which_geom=dodecahedron \
+          mesh_sdf.file="$DODECA" mesh_sdf.n_cell=32 mesh_sdf.eb_shop=$shop \
+          mesh_sdf.plotfile=plt-dodeca-$shop) >"$run/dodeca-$shop.log" 2>&1 &&
+          grep -qE '^mesh_sdf: [1-9][0-9]* cut cells' "$run/dodeca-$shop.log" ||
+          fail "AMReX 3D: the dodecahedron run failed ($run/dodeca-$shop.log)"
+      done
+      compare "AMReX 3D dodecahedron 32^3, ebgeom's shop against AMReX's" "$run/dodeca-ebgeom.log" \
+        "$run/dodeca-amrex.log"
     else
       say "AMReX 3D: $DODECA not found, mesh run skipped"
     fi
   else
     compare "AMReX 2D circle 32^2 (slice z = 0.5)" "$run/sphere.log" "$run/amrex_sphere.log"
+    compare "AMReX 2D circle 32^2, AMReX's shop" "$run/sphere-amrex-shop.log" "$run/amrex_sphere.log"
   fi
 }
 
@@ -244,13 +259,18 @@ chombo_quick() {
   fi
 }
 
+CHOMBO_LIBS="BaseTools BoxTools AMRTools EBTools Workshop EBAMRTools"
+
 chombo_full() {
   local ex="$WORK/chombo-mesh_sdf" exe run
   if [ ! -f "$CHOMBO_SRC/.complete" ]; then
     say "Chombo: building the EB libraries (once; reused afterwards) [$(elapsed)]"
     chombo_config
-    # USE_EB=TRUE on the top-level make too, or the EB libraries are not built
-    nice make -C "$CHOMBO_SRC/lib" -j "$JOBS" lib USE_EB=TRUE DIM=3 >"$CACHE/chombo-build.log" 2>&1 ||
+    # USE_EB=TRUE on the top-level make too, or the EB libraries are not built. Only the
+    # libraries the example links (and their dependencies): `make lib` would also build the
+    # elliptic, time-dependent, mapped-geometry and particle libraries, tripling the time.
+    nice make -C "$CHOMBO_SRC/lib" -j "$JOBS" $CHOMBO_LIBS USE_EB=TRUE DIM=3 \
+      >"$CACHE/chombo-build.log" 2>&1 ||
       { tail -n 40 "$CACHE/chombo-build.log" >&2; die "Chombo build failed ($CACHE/chombo-build.log)"; }
     touch "$CHOMBO_SRC/.complete"
   fi
@@ -270,13 +290,21 @@ chombo_full() {
       mesh_sdf.sphere_radius=0.3 mesh_sdf.output="$g.hdf5") >"$run/$g.log" 2>&1 ||
       fail "Chombo 3D: $g run failed ($run/$g.log)"
   done
+  # ebgeom's sphere without the adapter's box hook (GeometryShop evaluates every node): the same
+  (cd "$run" && "$exe" "$ex/mesh_sdf.inputs" mesh_sdf.which_geom=sphere mesh_sdf.box_hook=0 \
+    mesh_sdf.n_cells=32 mesh_sdf.sphere_radius=0.3 mesh_sdf.output=sphere-nohook.hdf5) \
+    >"$run/sphere-nohook.log" 2>&1 || fail "Chombo 3D: sphere run without the box hook failed"
   compare "Chombo 3D sphere 32^3" "$run/sphere.log" "$run/chombo_sphere.log" 1760
+  compare "Chombo 3D sphere 32^3, no box hook" "$run/sphere-nohook.log" "$run/chombo_sphere.log" 1760
   if [ -f "$DODECA" ]; then
-    (cd "$run" && "$exe" "$ex/mesh_sdf.inputs" mesh_sdf.which_geom=dodecahedron mesh_sdf.file="$DODECA" \
-      mesh_sdf.n_cells=32 mesh_sdf.output=dodeca.hdf5) >"$run/dodeca.log" 2>&1 &&
-      grep -qE '^mesh_sdf: [1-9][0-9]* cut cells' "$run/dodeca.log" &&
-      say "Chombo 3D dodecahedron: $(result_of "$run/dodeca.log" | awk '{print $1}') cut cells" ||
-      fail "Chombo 3D: the dodecahedron run failed ($run/dodeca.log)"
+    for hook in 1 0; do
+      (cd "$run" && "$exe" "$ex/mesh_sdf.inputs" mesh_sdf.which_geom=dodecahedron mesh_sdf.file="$DODECA" \
+        mesh_sdf.n_cells=32 mesh_sdf.box_hook=$hook mesh_sdf.output=dodeca-$hook.hdf5) \
+        >"$run/dodeca-$hook.log" 2>&1 &&
+        grep -qE '^mesh_sdf: [1-9][0-9]* cut cells' "$run/dodeca-$hook.log" ||
+        fail "Chombo 3D: the dodecahedron run failed ($run/dodeca-$hook.log)"
+    done
+    compare "Chombo 3D dodecahedron 32^3, box hook against none" "$run/dodeca-1.log" "$run/dodeca-0.log"
   fi
 }
 

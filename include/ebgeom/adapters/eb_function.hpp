@@ -174,7 +174,10 @@ template <class S> class EbFunction {
     auto coord = [&](int d, int i) {
       return d < dim ? scalar_type(origin[d] + R(i) * dx[d]) : z_slice_;
     };
-    if constexpr (has_lattice_eval_v<S>) {
+    bool tiles = has_lattice_eval_v<S>;
+    // A few nodes (one cell's corners, as Chombo asks) cost less per point than a tile search.
+    if (n[0] * n[1] * n[2] < 64) tiles = false;
+    if (tiles) {
       constexpr int tile = 8;
       std::vector<Vec3<scalar_type>> pts;
       std::vector<scalar_type> vals;
@@ -191,8 +194,8 @@ template <class S> class EbFunction {
                 for (int i = i0; i <= i1; ++i)
                   pts.push_back({coord(0, i), coord(1, j), coord(2, k)});
             vals.resize(pts.size());
-            sdf_->eval_lattice(
-                Span<const Vec3<scalar_type>>(pts.data(), pts.size()),
+            lattice_eval(
+                *sdf_, Span<const Vec3<scalar_type>>(pts.data(), pts.size()),
                 {{std::size_t(i1 - i0 + 1), std::size_t(j1 - j0 + 1), std::size_t(k1 - k0 + 1)}},
                 Span<scalar_type>(vals.data(), vals.size()));
             std::size_t t = 0;
@@ -245,6 +248,16 @@ template <class S> class EbFunction {
   }
 
  private:
+  // eval_lattice when `S` has one (only reached then: `node_values` checks).
+  template <class U>
+  static void lattice_eval(const U& sdf, Span<const Vec3<scalar_type>> pts,
+                           const std::array<std::size_t, 3>& dims, Span<scalar_type> out) {
+    if constexpr (has_lattice_eval_v<U>)
+      sdf.eval_lattice(pts, dims, out);
+    else
+      for (std::size_t i = 0; i < pts.size(); ++i) out[i] = sdf(pts[i]);
+  }
+
   template <class R>
   void add_node_signs(const R* origin, const R* dx, std::array<int, 3> l, std::array<int, 3> h,
                       int dim, EbSigns& s, std::vector<R>& vals) const {

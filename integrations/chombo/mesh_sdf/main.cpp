@@ -60,6 +60,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -239,7 +240,8 @@ template <class F> void run(const F& f, const DomainBox& box, const Params& prm)
 #endif
   Real cell = 1;
   for (int d = 0; d < SpaceDim; ++d) cell *= dx;
-  pout() << "mesh_sdf: " << cut << " cut cells, fluid volume " << volume * cell << std::endl;
+  pout() << "mesh_sdf: " << cut << " cut cells, fluid volume " << std::setprecision(10)
+         << volume * cell << std::setprecision(6) << std::endl;
   if (fluid == 0) {
     pout() << "mesh_sdf: no cell of the domain is fluid: the object "
            << (prm.fluid_inside ? "does not reach into the domain and the fluid is inside it "
