@@ -23,6 +23,8 @@ from __future__ import annotations
 import json as _json
 import math as _math
 import os as _os
+import tempfile as _tempfile
+import weakref as _weakref
 from dataclasses import dataclass as _dataclass
 from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
@@ -286,8 +288,9 @@ class Shape:
         >>> grid = ebgeom.sample_grid(s, res=64)
     """
 
-    def __init__(self, node: Dict[str, Any]):
+    def __init__(self, node: Dict[str, Any], keep: Tuple[Any, ...] = ()):
         self.node = node
+        self._keep = keep  # the files of in-memory meshes the node names (see ``mesh``)
         self._compiled: Dict[str, Scene] = {}
 
     def to_json(self) -> Dict[str, Any]:
@@ -316,7 +319,7 @@ class Shape:
         else:
             node = dict(self.node)
         node.update(keys)
-        return Shape(node)
+        return Shape(node, self._keep)
 
     def translate(self, v: Sequence[float]) -> "Shape":
         """The shape moved by ``v``: ``ebgeom.sphere(1).translate((0, 0, 2))``."""
@@ -338,14 +341,24 @@ class Shape:
         """|S| - t: a hollow shell of thickness 2 t around the surface."""
         return self._with(shell=float(t))
 
-    def __or__(self, other: "Shape") -> "Shape":
+    def __or__(self, other: Any) -> "Shape":
         return union(self, other)
 
-    def __and__(self, other: "Shape") -> "Shape":
+    def __and__(self, other: Any) -> "Shape":
         return intersection(self, other)
 
-    def __sub__(self, other: "Shape") -> "Shape":
+    def __sub__(self, other: Any) -> "Shape":
         return difference(self, other)
+
+    # mesh | shape, mesh & shape, mesh - shape with an ebgeom.Mesh or MeshSdf on the left
+    def __ror__(self, other: Any) -> "Shape":
+        return union(other, self)
+
+    def __rand__(self, other: Any) -> "Shape":
+        return intersection(other, self)
+
+    def __rsub__(self, other: Any) -> "Shape":
+        return difference(other, self)
 
     def __repr__(self) -> str:
         return f"ebgeom.Shape({_json.dumps(self.node)})"
@@ -424,39 +437,81 @@ def plane(normal: Sequence[float], point: Sequence[float] = (0, 0, 0)) -> Shape:
     return Shape({"type": "plane", "normal": _vec(normal, "normal"), "point": _vec(point, "point")})
 
 
-def mesh(path: PathLike, sign: str = "auto") -> Shape:
-    """A mesh file as a scene node (its exact SDF with ``sign`` mode), for CSG with other shapes.
-    The path is resolved when the shape is compiled (relative to the current directory).
+class _MeshFile:
+    """An in-memory mesh written once, losslessly (binary PLY keeps float64 vertices and the
+    faces as given), where the scene compiler reads it; removed when no shape refers to it."""
+
+    def __init__(self, m: Mesh):
+        self._dir = _tempfile.TemporaryDirectory(prefix="ebgeom-mesh-")
+        self.path = _os.path.join(self._dir.name, "mesh.ply")
+        m.write(self.path)
+
+
+_mesh_files: "_weakref.WeakKeyDictionary[Any, _MeshFile]" = _weakref.WeakKeyDictionary()
+
+
+def mesh(source: Union[PathLike, Mesh, "MeshSdf"], sign: Optional[str] = None) -> Shape:
+    """A mesh as a scene node (its exact SDF with ``sign`` mode, default "auto"), for CSG with
+    other shapes: a mesh file (its path resolved now, relative to the current directory), an
+    ``ebgeom.Mesh`` (from a file or from arrays) or a ``MeshSdf`` (its mesh, and its sign mode
+    unless ``sign`` is given). ``union``, ``intersection``, ``difference`` and the operators
+    accept a ``Mesh`` or ``MeshSdf`` directly. The SDF of the node is ``MeshSdf(mesh, sign)``'s,
+    value for value.
+
+    A mesh built from arrays reaches the scene compiler as a temporary binary PLY file (exact:
+    float64 vertices, the faces as given) that lives as long as a shape refers to it; its
+    ``to_json()`` names that file, so write the mesh (``mesh.write``) to keep a scene file.
 
     >>> part = ebgeom.mesh("part.stl") - ebgeom.cylinder((0, 0, -1), (0, 0, 1), 0.1)
+    >>> blob = ebgeom.Mesh(vertices, faces) | ebgeom.sphere(0.5)
     """
-    return Shape({"type": "mesh", "path": _os.path.abspath(_os.fspath(path)), "sign": sign})
+    keep: Tuple[Any, ...] = ()
+    if isinstance(source, MeshSdf):
+        sign = source.sign_requested if sign is None else sign
+        source = source.mesh
+    if isinstance(source, Mesh):
+        if source.path:
+            path = _os.path.abspath(source.path)  # read as the file's own numbers, as MeshSdf
+        else:
+            f = _mesh_files.get(source)
+            if f is None:
+                f = _mesh_files[source] = _MeshFile(source)
+            path, keep = f.path, (f,)
+    else:
+        path = _os.path.abspath(_os.fspath(source))
+    return Shape({"type": "mesh", "path": path, "sign": "auto" if sign is None else sign}, keep)
 
 
-def _csg(kind: str, shapes: Sequence[Shape], smooth: float) -> Shape:
-    if len(shapes) == 1 and not isinstance(shapes[0], Shape):
+def _as_shape(s: Any, kind: str) -> Shape:
+    if isinstance(s, Shape):
+        return s
+    if isinstance(s, (Mesh, MeshSdf)):
+        return mesh(s)
+    raise TypeError(f"{kind}: expected ebgeom shapes, meshes or mesh SDFs, got {type(s).__name__}")
+
+
+def _csg(kind: str, shapes: Sequence[Any], smooth: float) -> Shape:
+    if len(shapes) == 1 and not isinstance(shapes[0], (Shape, Mesh, MeshSdf)):
         shapes = tuple(shapes[0])
     if not shapes:
         raise ValueError(f"{kind}: needs at least one shape")
-    for s in shapes:
-        if not isinstance(s, Shape):
-            raise TypeError(f"{kind}: expected ebgeom shapes, got {type(s).__name__}")
-    n: Dict[str, Any] = {"type": kind, "children": [s.node for s in shapes]}
+    parts = [_as_shape(s, kind) for s in shapes]
+    n: Dict[str, Any] = {"type": kind, "children": [s.node for s in parts]}
     if smooth:
         n["smooth"] = float(smooth)
-    return Shape(n)
+    return Shape(n, tuple(k for s in parts for k in s._keep))
 
 
-def union(*shapes: Shape, smooth: float = 0.0) -> Shape:
+def union(*shapes: Union[Shape, Mesh, MeshSdf], smooth: float = 0.0) -> Shape:
     """The union of shapes (``a | b``); ``smooth`` > 0 blends them over that distance
-    (polynomial smooth minimum).
+    (polynomial smooth minimum). Meshes (``Mesh``, ``MeshSdf``) take part as ``mesh(m)``.
 
     >>> blob = ebgeom.union(ebgeom.sphere(1), ebgeom.sphere(1, (1.5, 0, 0)), smooth=0.3)
     """
     return _csg("union", shapes, smooth)
 
 
-def intersection(*shapes: Shape, smooth: float = 0.0) -> Shape:
+def intersection(*shapes: Union[Shape, Mesh, MeshSdf], smooth: float = 0.0) -> Shape:
     """The intersection of shapes (``a & b``); ``smooth`` > 0 blends the edges.
 
     >>> lens = ebgeom.intersection(ebgeom.sphere(1, (0, 0, -0.5)), ebgeom.sphere(1, (0, 0, 0.5)))
@@ -464,7 +519,7 @@ def intersection(*shapes: Shape, smooth: float = 0.0) -> Shape:
     return _csg("intersection", shapes, smooth)
 
 
-def difference(*shapes: Shape, smooth: float = 0.0) -> Shape:
+def difference(*shapes: Union[Shape, Mesh, MeshSdf], smooth: float = 0.0) -> Shape:
     """The first shape minus the others (``a - b``); ``smooth`` > 0 blends the edges.
 
     >>> hole = ebgeom.cylinder((0, 0, -1), (0, 0, 1), 0.4)

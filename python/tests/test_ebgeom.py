@@ -521,3 +521,57 @@ def test_gltf_and_glb(tmp_path, cli):
     with pytest.raises(ebgeom.MeshFormatError, match="bad.gltf.*POSITION must be float VEC3") as e:
         ebgeom.read_mesh(tmp_path / "bad.gltf")
     assert e.value.path == str(tmp_path / "bad.gltf")
+
+
+# ---- in-memory meshes inside CSG ---------------------------------------------------------------
+
+
+@pytest.mark.parametrize("precision", ["float", "double"])
+def test_in_memory_mesh_in_csg(precision):
+    v, f = icosphere(2)
+    m = ebgeom.Mesh(v * 0.8 + [0.3, 0, 0], f)  # built from arrays: no file
+    ball = ebgeom.sphere(0.5, (-0.4, 0, 0))
+    p = RNG.uniform(-1.5, 1.5, size=(2000, 3))
+    dm = ebgeom.MeshSdf(m, precision=precision)(p)
+    db = ball.compile(precision)(p)
+    for shape, ref in ((ebgeom.union(m, ball), np.minimum(dm, db)),
+                       (m | ball, np.minimum(dm, db)),
+                       (m - ball, np.maximum(dm, -db)),
+                       (ball - m, np.maximum(db, -dm)),
+                       (ebgeom.intersection(ball, m), np.maximum(db, dm))):
+        np.testing.assert_array_equal(shape.compile(precision)(p), ref)
+    # a MeshSdf brings its sign mode; an open mesh under the exact winding sign
+    keep = ~np.all(v[f][:, :, 2] > 0.8, axis=1)
+    open_sdf = ebgeom.MeshSdf(ebgeom.Mesh(v, f[keep]), sign="winding", precision=precision)
+    s = ebgeom.union(open_sdf, ebgeom.sphere(0.2, (0, 0, 2)))
+    assert s.node["children"][0]["sign"] == "winding"
+    np.testing.assert_array_equal(
+        s.compile(precision)(p),
+        np.minimum(open_sdf(p), ebgeom.sphere(0.2, (0, 0, 2)).compile(precision)(p)))
+    # transforms of the composed shape apply to the mesh too (p + 1 - 1 rounds: not bit for bit)
+    moved = (m | ball).translate((0, 0, 1))
+    np.testing.assert_allclose(moved.compile(precision)(p + [0, 0, 1]),
+                               (m | ball).compile(precision)(p),
+                               atol=1e-6 if precision == "float" else 1e-14)
+
+
+def test_in_memory_mesh_file_lives_with_its_shapes(tmp_path):
+    m = ebgeom.Mesh(*cube())
+    s = m | ebgeom.sphere(0.1, (3, 0, 0))
+    path = s.node["children"][0]["path"]
+    assert os.path.exists(path)
+    assert ebgeom.mesh(m).node["path"] == path  # written once per mesh
+    t = s.translate((1, 0, 0))
+    del s, m
+    gc.collect()
+    assert os.path.exists(path)  # t still refers to it
+    np.testing.assert_allclose(t([[1, 0, 0]]), [-1], atol=1e-12)
+    del t
+    gc.collect()
+    assert not os.path.exists(path)
+    # a mesh read from a file is used through its file, as MeshSdf reads it
+    mp = tmp_path / "cube.obj"
+    ebgeom.Mesh(*cube()).write(mp)
+    assert ebgeom.mesh(ebgeom.read_mesh(mp)).node["path"] == str(mp)
+    with pytest.raises(TypeError, match="union: expected ebgeom shapes, meshes"):
+        ebgeom.union(ebgeom.sphere(1), "cube.obj")
