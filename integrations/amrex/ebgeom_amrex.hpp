@@ -8,7 +8,6 @@
 /// #include <AMReX_EB2.H>
 /// #include "ebgeom_amrex.hpp"
 ///
-/// auto mesh = ebgeom::read_shared_mesh_sdf<double>("part.stl").value();  // built once
 /// auto soup = ebgeom::io::read_mesh<double>("part.stl").value();           // read the file
 /// auto mesh = ebgeom::make_shared_mesh_sdf(soup).value();                  // built once
 /// ebgeom::AmrexImplicitFunction<ebgeom::SignedMeshSdf<double>> f(mesh);    // fluid outside
