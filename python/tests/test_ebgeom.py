@@ -575,3 +575,14 @@ def test_in_memory_mesh_file_lives_with_its_shapes(tmp_path):
     assert ebgeom.mesh(ebgeom.read_mesh(mp)).node["path"] == str(mp)
     with pytest.raises(TypeError, match="union: expected ebgeom shapes, meshes"):
         ebgeom.union(ebgeom.sphere(1), "cube.obj")
+
+
+def test_info_equals_cli_info_json(tmp_path, cli, sphere_mesh):
+    v, f = sphere_mesh
+    keep = ~np.all(v[f][:, :, 2] > 0.8, axis=1)  # a hole: boundary edges, fast-winding sign
+    for name, faces in (("closed.ply", f), ("open.obj", f[keep])):
+        path = tmp_path / name
+        ebgeom.Mesh(v, faces).write(path)
+        r = subprocess.run([cli, "info", str(path), "--json"], check=True, capture_output=True,
+                           text=True)
+        assert ebgeom.read_mesh(path).info() == json.loads(r.stdout)
