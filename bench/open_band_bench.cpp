@@ -3,7 +3,8 @@
 // Narrow bands on an open mesh: the band of a winding sign (`fast-winding`, what `auto` picks on
 // an open mesh; far blocks signed by bounding the winding number, sdf/split_sign.hpp) against the
 // same band with the pseudonormal sign, in one process, methods interleaved in every repetition,
-// medians of wall times. Sparse output (`sample_grid_sparse`, what `ebgeom sdf -o OUT.npz --band`
+// medians of wall and CPU times (CPU time is steadier on a shared machine; with --threads 1 it
+// is the one to compare). Sparse output (`sample_grid_sparse`, what `ebgeom sdf -o OUT.npz --band`
 // writes), float, the mesh's box grown by 10% of its largest extent per side, `--res` cells on
 // the longest axis, a band of `--cells` cells.
 //
@@ -19,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -41,15 +43,23 @@ struct Options {
   std::string only;
 };
 
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
 struct Run {
-  double seconds = 0;
+  double seconds = 0, cpu = 0;
   std::size_t blocks = 0, tiles = 0, bytes = 0;
 };
 
 template <class S> Run run_band(const S& sdf, const GridSpec<T>& spec, const GridOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
+  const double c0 = cpu_seconds();
   auto g = sample_grid_sparse(sdf, spec, opt);
   Run r;
+  r.cpu = cpu_seconds() - c0;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!g) {
     std::fprintf(stderr, "sample_grid_sparse: %s\n", g.error().what());
@@ -131,7 +141,7 @@ int main(int argc, char** argv) {
     std::printf("\ngrid %zux%zux%zu, band %.1f cells, %d thread(s) (0 = all), %d rep(s)\n",
                 spec.dims[0], spec.dims[1], spec.dims[2], o.cells, o.threads, o.reps);
     const char* names[] = {"pseudonormal", "signed-pseudonormal", "fast-winding"};
-    std::vector<double> t[3];
+    std::vector<double> t[3], c[3];
     Run last[3];
     for (int r = 0; r < (o.only.empty() ? o.reps : 1); ++r)
       for (int m = 0; m < 3; ++m) {
@@ -140,17 +150,20 @@ int main(int argc, char** argv) {
                   : m == 1 ? run_band(signed_pn, spec, opt)
                            : run_band(signed_fw, spec, opt);
         t[m].push_back(run.seconds);
+        c[m].push_back(run.cpu);
         last[m] = run;
       }
     for (int m = 0; m < 3; ++m) {
       if (t[m].empty()) continue;
-      std::printf("  %-20s median %8.3f s  kept %8zu of %9zu tiles  %8.1f MiB\n", names[m],
-                  median(t[m]), last[m].blocks, last[m].tiles,
+      std::printf("  %-20s median wall %8.3f s  cpu %8.3f s  kept %8zu of %9zu tiles  %8.1f MiB\n",
+                  names[m], median(t[m]), median(c[m]), last[m].blocks, last[m].tiles,
                   double(last[m].bytes) / (1024.0 * 1024.0));
     }
-    if (!t[0].empty() && !t[2].empty())
-      std::printf("  fast-winding / pseudonormal (MeshSdf): %.2fx;  / signed-pseudonormal: %.2fx\n",
-                  median(t[2]) / median(t[0]), median(t[2]) / median(t[1]));
+    if (!t[0].empty() && !t[1].empty() && !t[2].empty())
+      std::printf("  fast-winding / pseudonormal (MeshSdf): wall %.2fx, cpu %.2fx;  / "
+                  "signed-pseudonormal: wall %.2fx, cpu %.2fx\n",
+                  median(t[2]) / median(t[0]), median(c[2]) / median(c[0]),
+                  median(t[2]) / median(t[1]), median(c[2]) / median(c[1]));
   }
   return 0;
 }

@@ -157,7 +157,9 @@ void eval_packed(const GridFrame<T>& f, const std::array<std::size_t, 3>& o,
 /// 8 per axis) that `sign_over` proves over boxes: the block's samples' box first, then its
 /// octants, down to blocks of 2 samples per side. Samples left `unknown` need `sign_at`. A box
 /// is tried only when `dist(block)` (a lower bound on its samples' distances to the surface)
-/// exceeds its half-diagonal, since closer boxes touch the surface and the proof fails.
+/// exceeds its diagonal: closer boxes rarely get a proof (the bounds grow like (radius /
+/// distance)²) and their octants are tried anyway (on the bunny at 256³, fewer failed proofs and
+/// less time than trying from half the diagonal on).
 template <class S, class Dist>
 void prove_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
                  const std::array<std::size_t, 3>& base, const std::array<std::size_t, 3>& lo,
@@ -167,7 +169,7 @@ void prove_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
   if ((hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]) <= 1) return;
   const Vec3<T> p0 = f.point(base[0] + lo[0], base[1] + lo[1], base[2] + lo[2]);
   const Vec3<T> p1 = f.point(base[0] + hi[0] - 1, base[1] + hi[1] - 1, base[2] + hi[2] - 1);
-  if (dist(lo, hi) > norm(p1 - p0) * T(0.5)) {
+  if (dist(lo, hi) > norm(p1 - p0)) {
     const Sign s = sdf.sign_over(Aabb<T>{p0, p1});
     if (s != Sign::unknown) {
       for (std::size_t z = lo[2]; z < hi[2]; ++z)
