@@ -77,7 +77,7 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
     LatticeJob job{pts, dims, std::vector<std::uint32_t>(n, bvh::ChildRef::none),
                    {},  {},   bvh::ChildRef::none};
     job.d2.resize(64);
-    solve_lattice(job, {{0, 0, 0}}, dims, nullptr, 0);
+    MeshTileKernels<I>::solve_lattice(*this, job, {{0, 0, 0}}, dims, nullptr, 0);
     return std::move(job.slot);
   }
 
@@ -143,7 +143,8 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
   }
 
   /// Leaves whose box is within squared distance `lim2` of `box`, nearest to `c` first.
-  void collect_leaves(const Aabb<T>& box, T lim2, const Vec3<T>& c, LeafList& out) const {
+  EBGEOM_FORCE_INLINE void collect_leaves_inline(const Aabb<T>& box, T lim2, const Vec3<T>& c,
+                                                 LeafList& out) const {
     struct Item {
       T key;
       Aabb<T> b;
@@ -241,8 +242,10 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
 
   /// Samples [a, b) of the job's tile; `parent` lists the candidate leaves of an
   /// enclosing block (nullptr: the whole BVH).
-  void solve_lattice(LatticeJob& job, const std::array<std::size_t, 3>& a,
-                     const std::array<std::size_t, 3>& b, LeafList* parent, int level) const {
+  EBGEOM_FORCE_INLINE void solve_lattice_inline(LatticeJob& job,
+                                                const std::array<std::size_t, 3>& a,
+                                                const std::array<std::size_t, 3>& b,
+                                                LeafList* parent, int level) const {
     const auto& dims = job.dims;
     auto index = [&](std::size_t x, std::size_t y, std::size_t z) {
       return x + dims[0] * (y + dims[1] * z);
@@ -275,7 +278,7 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
       const T u = (std::sqrt(dq2) + std::sqrt(box.max_distance2(q))) * (T(1) + T(64) * eps);
       const T lim2 = bvh::prune_limit(u * u, s_.slack);
       if (parent == nullptr) {
-        collect_leaves(box, lim2, box.center(), list);
+        MeshTileKernels<I>::collect_leaves(*this, box, lim2, box.center(), list);
       } else {
         list.clear();
         for (std::size_t i = 0; i < parent->size(); ++i) {
@@ -299,7 +302,7 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
           cb[d] = hi ? b[d] : m[d];
           empty = empty || ca[d] >= cb[d];
         }
-        if (!empty) solve_lattice(job, ca, cb, &list, level + 1);
+        if (!empty) MeshTileKernels<I>::solve_lattice(*this, job, ca, cb, &list, level + 1);
       }
       return;
     }
@@ -320,8 +323,9 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
   T plane_margin_;
 };
 
-/// The per-sample scan of tile evaluation and its box test compiled for instruction set I
-/// (`flatten` inlines the scan's block scans into one function with I's target attribute).
+/// Tile evaluation compiled for instruction set I: the recursion over parts of the tile, the leaf
+/// collection, the per-sample scan (`flatten` inlines its block scans) and the box test, each one
+/// function with I's target attribute.
 #define EBGEOM_MESH_TILE_KERNELS(I, TARGET)                                                        \
   template <class T>                                                                               \
   TARGET EBGEOM_VECTOR_KERNEL EBGEOM_NOINLINE static void boxes_distance2(                         \
@@ -329,6 +333,17 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
       const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx, const T* EBGEOM_RESTRICT hy,       \
       const T* EBGEOM_RESTRICT hz, const Vec3<T>& p, T* EBGEOM_RESTRICT out) noexcept {            \
     boxes_distance2_inline(n, lx, ly, lz, hx, hy, hz, p, out);                                     \
+  }                                                                                                \
+  template <class E, class Job>                                                                    \
+  TARGET static void solve_lattice(const E& e, Job& job, const std::array<std::size_t, 3>& a,      \
+                                   const std::array<std::size_t, 3>& b,                            \
+                                   typename E::LeafList* parent, int level) {                      \
+    e.solve_lattice_inline(job, a, b, parent, level);                                              \
+  }                                                                                                \
+  template <class E, class T>                                                                      \
+  TARGET static void collect_leaves(const E& e, const Aabb<T>& box, T lim2, const Vec3<T>& c,      \
+                                    typename E::LeafList& out) {                                   \
+    e.collect_leaves_inline(box, lim2, c, out);                                                    \
   }                                                                                                \
   template <class E, class List, class T>                                                          \
   TARGET EBGEOM_FLATTEN static std::uint32_t scan_list(const E& e, const List& list, List& pl,     \
