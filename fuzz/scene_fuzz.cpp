@@ -45,7 +45,7 @@ void drop_paths(ebgeom::scene::Json& j) {
 template <class T> void compile_and_eval(const ebgeom::scene::Json& doc) {
   using namespace ebgeom;
   try {
-    const scene::Program<T> prog = scene::compile_scene<T>(doc, "fuzz.json");
+    const scene::SceneSdf<T> prog = scene::compile_scene<T>(doc, "fuzz.json");
     const std::vector<Vec3<T>> pts = {{0, 0, 0}, {T(0.5), T(-1), T(2)}, {T(1e3), 0, 0}};
     std::vector<T> out(pts.size());
     prog.eval(Span<const Vec3<T>>(pts), Span<T>(out));

@@ -35,7 +35,6 @@
 #include "common.hpp"
 #include "ebgeom/scene/gltf.hpp"
 #include "ebgeom/scene/mesh_input.hpp"
-#include "ebgeom/scene/program.hpp"
 #include "ebgeom/scene/scene.hpp"
 #include "mesh_report.hpp"
 #include "npz.hpp"
@@ -250,16 +249,16 @@ py::dict mesh_info(const Mesh& m) {
 
 // ---- SDF objects ------------------------------------------------------------------------------
 
-/// What sample_grid needs of any SDF: a compiled program (a mesh is a one-instruction program, as
-/// in the CLI), in float or double.
+/// What sample_grid needs of any SDF: a compiled scene (a mesh is a scene of one mesh, as in the
+/// CLI), in float or double.
 struct SdfBase {
   virtual ~SdfBase() = default;
   virtual bool is_double() const = 0;
 };
 
 template <class T> struct SdfImpl : SdfBase {
-  cli::Program<T> prog;
-  std::shared_ptr<const cli::CliMeshSdf<T>> mesh; // null for scenes
+  scene::SceneSdf<T> prog;
+  const SignedMeshSdf<T>* mesh = nullptr; // prog.mesh(): null for scenes
   bool is_double() const override { return std::is_same_v<T, double>; }
 };
 
@@ -281,13 +280,13 @@ struct Sdf {
 template <class T> void build_mesh_impl(Sdf& s, const Mesh& m, SignMode mode) {
   auto impl = std::make_shared<SdfImpl<T>>();
   const PolygonSoup<T> soup = m.soup_as<T>();
-  auto built = cli::CliMeshSdf<T>::build(soup, mode);
+  SignOptions opt;
+  opt.mode = mode;
+  auto built = SignedMeshSdf<T>::build(soup, opt);
   if (!built) throw py::value_error((s.label.empty() ? "" : s.label + ": ") + built.error().what());
-  impl->mesh = std::make_shared<const cli::CliMeshSdf<T>>(std::move(*built));
-  impl->prog.box = impl->mesh->bounds();
-  impl->prog.code.push_back({cli::Op::mesh, 0, mode == SignMode::unsigned_distance ? 1u : 0u});
-  impl->prog.scene_kind = impl->mesh->sign_kind();
-  impl->prog.meshes.push_back(impl->mesh);
+  impl->prog = scene::SceneSdf<T>::of_mesh(
+      std::make_shared<const SignedMeshSdf<T>>(std::move(*built)), mode);
+  impl->mesh = impl->prog.mesh();
   if constexpr (std::is_same_v<T, double>)
     s.d = impl;
   else
@@ -436,9 +435,9 @@ py::dict sign_info(const Sdf& s) {
       r["reason"] = "a scene (each mesh in it has its own sign mode)";
       return;
     }
-    r["requested"] = cli::sign_name(impl.mesh->requested_sign());
-    r["mode"] = cli::sign_name(impl.mesh->sign());
-    r["reason"] = impl.mesh->sign_reason();
+    r["requested"] = cli::sign_name(impl.prog.requested_sign());
+    r["mode"] = cli::sign_name(impl.mesh->resolved_mode());
+    r["reason"] = impl.mesh->reason();
   };
   if (s.is_double())
     fill(*s.d);
@@ -574,7 +573,8 @@ template <class T> py::dict sample_grid_as(const Sdf& s, const GridArgs& a) {
   T* out = values.mutable_data();
   {
     py::gil_scoped_release nogil;
-    auto ok = sample_grid(s.impl<T>().prog, spec, Span<T>(out, spec.size()), gopt);
+    auto ok = s.impl<T>().prog.visit(
+        [&](const auto& sdf) { return sample_grid(sdf, spec, Span<T>(out, spec.size()), gopt); });
     if (!ok) {
       py::gil_scoped_acquire gil;
       throw py::value_error(ok.error().what());
@@ -646,7 +646,7 @@ template <class T> py::dict sample_sparse_as(const Sdf& s, const GridArgs& a) {
     py::gil_scoped_release nogil;
     Result<SparseGrid<T>> r = make_error(ErrorCode::invalid_argument, "not sampled");
     try {
-      r = sample_grid_sparse(impl.prog, spec, gopt);
+      r = impl.prog.visit([&](const auto& sdf) { return sample_grid_sparse(sdf, spec, gopt); });
     } catch (const std::bad_alloc&) {
       py::gil_scoped_acquire gil;
       PyErr_SetString(PyExc_MemoryError,

@@ -122,11 +122,15 @@ template <class T> int run(const SdfOptions& o, const World& w) {
       }
       const std::size_t b = std::size_t(displs[std::size_t(w.rank)]);
       std::vector<double> mine(static_cast<std::size_t>(counts[std::size_t(w.rank)]));
-      estimate_brick_work(in.prog, spec, layout, b, Span<double>(mine), bw);
+      in.prog.visit([&](const auto& sdf) {
+        estimate_brick_work(sdf, spec, layout, b, Span<double>(mine), bw);
+      });
       MPI_Allgatherv(mine.data(), int(mine.size()), MPI_DOUBLE, work.data(), counts.data(),
                      displs.data(), MPI_DOUBLE, w.comm);
     } else {
-      estimate_brick_work(in.prog, spec, layout, 0, Span<double>(work), bw);
+      in.prog.visit([&](const auto& sdf) {
+        estimate_brick_work(sdf, spec, layout, 0, Span<double>(work), bw);
+      });
     }
     dec = decompose(layout, std::size_t(w.size), Span<const double>(work));
   });
@@ -144,7 +148,10 @@ template <class T> int run(const SdfOptions& o, const World& w) {
     values.resize(evaluated.size());
     const double s0 = cli::now_s();
     if (evaluated.size()) {
-      auto ok = sample_grid_box(in.prog, spec, evaluated, Span<T>(values), gopt);
+      // A mesh file is sampled through the mesh SDF itself (tile and band searches).
+      auto ok = in.prog.visit([&](const auto& sdf) {
+        return sample_grid_box(sdf, spec, evaluated, Span<T>(values), gopt);
+      });
       if (!ok) fail(cli::exit_failure, ok.error().what());
     }
     eval_s = cli::now_s() - s0;

@@ -27,7 +27,7 @@ int run_demo(const DemoOptions& o) {
   const double t0 = now_s();
   using T = float;
   SceneInfo info;
-  const Program<T> scene = compile_scene<T>(Json::parse(demo_scene_json()), "<demo>", &info);
+  const SceneSdf<T> scene = compile_scene<T>(Json::parse(demo_scene_json()), "<demo>", &info);
   const double t1 = now_s();
   const Aabb<T> b = scene.bounds();
   const T pad = T(0.1) * max_component(b.extent());

@@ -47,9 +47,8 @@ int run_query(const QueryOptions& o) {
 
   const double t0 = now_s();
   const bool scene = is_scene_path(o.input);
-  Program<double> prog;
+  SceneSdf<double> prog;
   SceneInfo info;
-  std::shared_ptr<const CliMeshSdf<double>> mesh;
   double t1;
   if (scene) {
     const Json doc = read_json_file(o.input);
@@ -58,11 +57,9 @@ int run_query(const QueryOptions& o) {
   } else {
     PolygonSoup<double> soup = load_mesh<double>(o.input);
     t1 = now_s();
-    mesh = std::make_shared<const CliMeshSdf<double>>(build_mesh_sdf(soup, o.input, sign));
-    prog.box = mesh->bounds();
-    prog.code.push_back({Op::mesh, 0, sign == SignMode::unsigned_distance ? 1u : 0u});
-    prog.meshes.push_back(mesh);
+    prog = mesh_scene(soup, o.input, sign);
   }
+  const SignedMeshSdf<double>* mesh = prog.mesh(); // null for scenes
   const std::vector<Vec3<double>> pts = read_npy_points(o.points);
   const double t2 = now_s();
   const std::size_t n = pts.size();
@@ -80,8 +77,11 @@ int run_query(const QueryOptions& o) {
     const std::size_t chunk = bar.enabled() ? std::max<std::size_t>(n / 100, 1 << 14) : n;
     for (std::size_t b = 0; b < n; b += chunk) {
       const std::size_t e = std::min(n, b + chunk);
-      if (auto ok = evaluate(prog, Span<const Vec3<double>>(pts.data() + b, e - b),
-                             Span<double>(d.data() + b, e - b), ex);
+      // A mesh file is evaluated through the mesh SDF itself (its batch queries).
+      if (auto ok = prog.visit([&](const auto& sdf) {
+            return evaluate(sdf, Span<const Vec3<double>>(pts.data() + b, e - b),
+                            Span<double>(d.data() + b, e - b), ex);
+          });
           !ok)
         fail(exit_failure, ok.error().what());
       bar.update(e, n);
@@ -166,7 +166,8 @@ int run_query(const QueryOptions& o) {
     j["max"] = n ? st.max : 0.0;
     j["inside_fraction"] = st.inside_fraction;
     j["sign"] = sign_name(sign);
-    if (mesh) j["sign_used"] = {{"mode", sign_name(mesh->sign())}, {"reason", mesh->sign_reason()}};
+    if (mesh)
+      j["sign_used"] = {{"mode", sign_name(mesh->resolved_mode())}, {"reason", mesh->reason()}};
     if (scene) j["meshes"] = mesh_signs_json(info);
     j["threads"] = resolve_threads(ex);
     std::printf("%s\n", j.dump(2).c_str());

@@ -64,7 +64,7 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
 
   const double t0 = now_s();
   const SdfInput<T> in = load_sdf_input<T>(o, sign);
-  const Program<T>& prog = in.prog;
+  const SceneSdf<T>& prog = in.prog;
   const double t1 = t0 + in.parse_s;
   const double t2 = now_s();
 
@@ -96,12 +96,15 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
                   "small holes) or --sign unsigned, or lower the resolution (--res/--dx)");
     else
       require_memory(tiles * sizeof(std::int32_t), "the tile table of " + grid_name);
-    grid.sparse = sample_sparse_with_progress(prog, spec, gopt, progress);
+    // A mesh file is sampled through the mesh SDF itself (tile and band searches).
+    grid.sparse = prog.visit(
+        [&](const auto& sdf) { return sample_sparse_with_progress(sdf, spec, gopt, progress); });
   } else {
     require_memory(dense_bytes, grid_name,
                    "lower the resolution (--res/--dx), shrink --box, or write only a narrow band "
                    "as a sparse grid: -o OUT.npz --band W");
-    grid.dense = sample_with_progress(prog, spec, gopt, progress);
+    grid.dense = prog.visit(
+        [&](const auto& sdf) { return sample_with_progress(sdf, spec, gopt, progress); });
   }
   const double t3 = now_s();
   const GridStats st = sparse ? grid_stats(grid.sparse) : grid_stats(Span<const T>(grid.dense));
@@ -158,8 +161,8 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
     j["inside_fraction"] = st.inside_fraction;
     j["sign"] = sign_name(sign);
     if (!scene)
-      j["sign_used"] = {{"mode", sign_name(prog.meshes[0]->sign())},
-                        {"reason", prog.meshes[0]->sign_reason()}};
+      j["sign_used"] = {{"mode", sign_name(prog.mesh()->resolved_mode())},
+                        {"reason", prog.mesh()->reason()}};
     else
       j["meshes"] = mesh_signs_json(in.info);
     j["threads"] = threads;
@@ -204,8 +207,8 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
                   human_bytes(grid.sparse.memory_bytes()).c_str(),
                   human_bytes(grid.file_bytes).c_str(), human_bytes(dense_bytes).c_str());
     if (!scene)
-      std::printf("  sign      %s (%s)\n", sign_name(prog.meshes[0]->sign()),
-                  prog.meshes[0]->sign_reason().c_str());
+      std::printf("  sign      %s (%s)\n", sign_name(prog.mesh()->resolved_mode()),
+                  prog.mesh()->reason().c_str());
     else
       print_mesh_signs(in.info);
     std::printf("  time      parse %.3f s  build %.3f s  eval %.3f s  write %.3f s  (%d threads)\n",

@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
 // The pieces of `ebgeom sdf` that `ebgeom-mpi sdf` shares: the options, the grid they describe,
-// and loading the input (mesh or scene) into a `Program<T>`. Both tools parse the same command
+// and loading the input (mesh or scene) into a `SceneSdf<T>`. Both tools parse the same command
 // line into the same grid, so their values agree bit for bit.
 
 #include <CLI/CLI.hpp>
@@ -17,7 +17,6 @@
 #include "common.hpp"
 #include "ebgeom/eval/grid_spec.hpp"
 #include "ebgeom/scene/mesh_input.hpp"
-#include "ebgeom/scene/program.hpp"
 #include "ebgeom/scene/scene.hpp"
 #include "number_options.hpp"
 
@@ -165,14 +164,14 @@ inline void require_finite_grid(std::uint64_t non_finite, std::uint64_t samples,
 
 /// An input loaded for sampling, with the times its phases took.
 template <class T> struct SdfInput {
-  Program<T> prog;
+  SceneSdf<T> prog; ///< a scene, or one mesh (`prog.mesh()`)
   SceneInfo info;
   bool scene = false;
   double parse_s = 0, build_s = 0;
 };
 
 /// Reads `o.input` (a scene by extension, otherwise a mesh with sign mode `sign`) into a
-/// `Program<T>`. Throws CliError (input, usage) with the reader's message.
+/// `SceneSdf<T>`. Throws CliError (input, usage) with the reader's message.
 template <class T> SdfInput<T> load_sdf_input(const SdfOptions& o, SignMode sign) {
   SdfInput<T> in;
   in.scene = is_scene_path(o.input);
@@ -185,11 +184,7 @@ template <class T> SdfInput<T> load_sdf_input(const SdfOptions& o, SignMode sign
   } else {
     PolygonSoup<T> soup = load_mesh<T>(o.input);
     t1 = now_s();
-    auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, o.input, sign));
-    in.prog.box = sdf->bounds();
-    in.prog.code.push_back({Op::mesh, 0, sign == SignMode::unsigned_distance ? 1u : 0u});
-    in.prog.scene_kind = sdf->sign_kind();
-    in.prog.meshes.push_back(std::move(sdf));
+    in.prog = mesh_scene(soup, o.input, sign);
   }
   in.parse_s = t1 - t0;
   in.build_s = now_s() - t1;

@@ -4,7 +4,9 @@
 /// \file
 /// `AnySdf<T>`: type erasure for SDFs at batch granularity (STYLE.md example 2). Wraps any SDF
 /// with scalar type T behind one shared immutable model; `eval` makes one virtual call per batch
-/// of points, so the wrapped shape's own (statically composed) evaluation stays inlined.
+/// of points, so the wrapped shape's own (statically composed) evaluation stays inlined; a wrapped
+/// shape with its own batch `eval` (another `AnySdf`, a run-time composed node) gets the whole
+/// batch.
 
 #include <algorithm>
 #include <cstddef>
@@ -66,9 +68,13 @@ template <class T> class AnySdf {
   template <class S> struct Model final : Interface {
     explicit Model(S s) : shape(std::move(s)) {}
     void eval(Span<const Vec3<T>> p, Span<T> out) const noexcept override {
-      const Vec3<T>* in = p.data();
-      T* o = out.data();
-      for (std::size_t i = 0, n = p.size(); i < n; ++i) o[i] = shape(in[i]); // inlined
+      if constexpr (has_batch_eval_v<S>) { // a run-time composed shape evaluates by batches too
+        shape.eval(p, out);
+      } else {
+        const Vec3<T>* in = p.data();
+        T* o = out.data();
+        for (std::size_t i = 0, n = p.size(); i < n; ++i) o[i] = shape(in[i]); // inlined
+      }
     }
     T value(const Vec3<T>& p) const noexcept override { return shape(p); }
     Aabb<T> bounds() const noexcept override { return shape.bounds(); }

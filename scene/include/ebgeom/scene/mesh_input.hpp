@@ -21,8 +21,6 @@
 #include "ebgeom/sdf/mesh_sdf.hpp"
 #include "ebgeom/sdf/signed_mesh_sdf.hpp"
 
-#define EBGEOM_CLI_HAS_BVH 1
-
 namespace ebgeom::scene {
 
 /// How the sign of a mesh SDF is decided (`--sign`, scene key "sign"): the library's
@@ -40,59 +38,6 @@ inline SignMode parse_sign_mode(const std::string& s, int code, const std::strin
 
 /// The CLI spelling of a mode: the library's `to_string` (one name table).
 inline const char* sign_name(SignMode m) noexcept { return ebgeom::to_string(m); }
-
-/// The mesh SDF the CLI uses: `SignedMeshSdf<T>` (the BVH `MeshSdf<T>`'s exact distance with the
-/// chosen sign mode). Keeps the `TriangleMesh` for normals. Immutable; thread-safe queries.
-template <class T> class CliMeshSdf {
- public:
-  using scalar_type = T;
-  static constexpr SdfKind kind = SdfKind::exact;
-
-  /// Closest point of the surface with the signed distance and the triangle holding it.
-  struct Hit {
-    T distance;
-    Vec3<T> point;
-    Index triangle;
-  };
-
-  /// `sign = automatic` validates `soup` and picks pseudonormal or fast winding.
-  static Result<CliMeshSdf> build(const PolygonSoup<T>& soup, SignMode sign = SignMode::automatic) {
-    SignOptions opt;
-    opt.mode = sign;
-    auto sdf = SignedMeshSdf<T>::build(soup, opt);
-    if (!sdf) return sdf.error();
-    CliMeshSdf s;
-    s.requested_ = sign;
-    s.sdf_ = std::make_shared<const SignedMeshSdf<T>>(std::move(*sdf));
-    return s;
-  }
-
-  T operator()(const Vec3<T>& p) const noexcept { return (*sdf_)(p); }
-  Aabb<T> bounds() const noexcept { return sdf_->bounds(); }
-  Hit closest(const Vec3<T>& p) const noexcept {
-    const auto h = sdf_->closest(p);
-    return {h.distance, h.point, h.triangle};
-  }
-  const TriangleMesh<T>& mesh() const noexcept { return sdf_->mesh(); }
-  /// The library's signed mesh SDF (its `closest` also reports the feature).
-  const SignedMeshSdf<T>& signed_sdf() const noexcept { return *sdf_; }
-  /// The mode asked for, the mode used (never automatic) and why ("requested" unless automatic).
-  SignMode requested_sign() const noexcept { return requested_; }
-  SignMode sign() const noexcept { return sdf_->resolved_mode(); }
-  const std::string& sign_reason() const noexcept { return sdf_->reason(); }
-  /// `exact` with the pseudonormal sign; `implicit` otherwise: unsigned, or a winding sign, which
-  /// changes across the w = 1/2 surface (filling holes) as well as across the mesh, so the grid
-  /// sampler must not propagate signs between far samples or skip far blocks.
-  SdfKind sign_kind() const noexcept {
-    return sign() == SignMode::pseudonormal ? SdfKind::exact : SdfKind::implicit;
-  }
-  /// "bvh".
-  static const char* method() noexcept { return "bvh"; }
-
- private:
-  std::shared_ptr<const SignedMeshSdf<T>> sdf_;
-  SignMode requested_ = SignMode::automatic;
-};
 
 /// The largest coordinate or length a scene or mesh may hold in precision T: squared distances
 /// between such points (and sums of three) stay finite. About 2.9e17 in float, 2.1e152 in double.
@@ -131,11 +76,12 @@ template <class T> PolygonSoup<T> load_mesh(const std::string& path) {
   return std::move(*soup);
 }
 
-/// Builds the CLI's mesh SDF with sign mode `sign`. Throws ToolError (input) naming `path` on
-/// failure.
+/// Builds the library's mesh SDF with sign mode `sign` (`automatic`: pseudonormal on closed,
+/// manifold, consistently oriented meshes, fast winding otherwise). Throws ToolError (input)
+/// naming `path` on failure, and for coordinates the precision cannot carry.
 template <class T>
-CliMeshSdf<T> build_mesh_sdf(const PolygonSoup<T>& soup, const std::string& path,
-                             SignMode sign = SignMode::automatic) {
+SignedMeshSdf<T> build_mesh_sdf(const PolygonSoup<T>& soup, const std::string& path,
+                                SignMode sign = SignMode::automatic) {
   for (std::size_t v = 0; v < soup.vertices.size(); ++v) {
     const Vec3<T>& p = soup.vertices[v];
     const double m =
@@ -150,7 +96,9 @@ CliMeshSdf<T> build_mesh_sdf(const PolygonSoup<T>& soup, const std::string& path
       fail(exit_input, path + buf);
     }
   }
-  auto sdf = CliMeshSdf<T>::build(soup, sign);
+  SignOptions opt;
+  opt.mode = sign;
+  auto sdf = SignedMeshSdf<T>::build(soup, opt);
   if (!sdf) fail(exit_input, path + ": " + sdf.error().what());
   return std::move(*sdf);
 }

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
-// JSON scene files (docs/scene-format.md) compiled into a `Program<T>`. Every error names the file
-// and the JSON pointer of the offending value, e.g.
+// JSON scene files (docs/scene-format.md) compiled into a `SceneSdf<T>`: a tree of the library's
+// shapes, transforms, CSG and mesh SDFs (nodes.hpp). Every error names the file and the JSON
+// pointer of the offending value, e.g.
 // `scene.json: /root/children/2/radius: expected a positive number, got -1`.
 
 #include <nlohmann/json.hpp>
@@ -22,10 +23,13 @@
 #include <utility>
 #include <vector>
 
+#include "ebgeom/core/rotation.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/scene/error.hpp"
 #include "ebgeom/scene/mesh_input.hpp"
-#include "ebgeom/scene/program.hpp"
+#include "ebgeom/scene/nodes.hpp"
+#include "ebgeom/scene/scene_sdf.hpp"
+#include "ebgeom/sdf/shapes.hpp"
 
 namespace ebgeom::scene {
 
@@ -114,10 +118,23 @@ inline std::string describe(const Json& j) {
   return s;
 }
 
+/// Rigid transform plus uniform scale of a scene node: world = t + R (s * local).
+template <class T> struct Xform {
+  Mat3<T> r;
+  Vec3<T> t = Vec3<T>::zero();
+  T s = 1;
+  Vec3<T> to_world(const Vec3<T>& p) const noexcept { return r * (p * s) + t; }
+};
+
+/// A compiled node: its SDF and the box that contains its zero level set and inside.
+template <class T> struct Built {
+  AnySdf<T> sdf;
+  Aabb<T> box;
+};
+
 template <class T> class SceneCompiler {
  public:
-  SceneCompiler(std::string file, Program<T>& prog, SceneInfo& info)
-      : file_(std::move(file)), prog_(prog), info_(info) {
+  SceneCompiler(std::string file, SceneInfo& info) : file_(std::move(file)), info_(info) {
     dir_ = std::filesystem::path(file_).parent_path().string();
   }
 
@@ -125,8 +142,11 @@ template <class T> class SceneCompiler {
     fail(exit_input, printable(file_ + ": " + (ptr.empty() ? "/" : shorten(ptr, 80)) + ": " + msg));
   }
 
-  /// Compiles a node; returns its bounds. Tracks stack depths.
-  Aabb<T> node(const Json& j, const std::string& ptr, SdfKind& kind) {
+  /// Triangles of the meshes compiled so far.
+  std::size_t triangles() const noexcept { return triangles_; }
+
+  /// Compiles a node.
+  Built<T> node(const Json& j, const std::string& ptr) {
     if (!j.is_object()) bad(ptr, "expected a node object {\"type\": ...}, got " + describe(j));
     if (++depth_ > max_depth) bad(ptr, "nodes are nested deeper than " + std::to_string(max_depth));
     ++info_.nodes;
@@ -138,34 +158,24 @@ template <class T> class SceneCompiler {
     const std::string type = *t;
 
     const bool has_xform = j.contains("translate") || j.contains("rotate") || j.contains("scale");
-    std::uint32_t xi = 0;
-    if (has_xform) {
-      Xform<T> x = parse_xform(j, ptr);
-      xi = std::uint32_t(prog_.xforms.size());
-      prog_.xforms.push_back(x);
-      prog_.code.push_back({Op::push_xform, xi, 0});
-      ++points_;
-      prog_.max_points = std::max(prog_.max_points, points_);
-    }
-    Aabb<T> b = body(type, j, ptr, kind);
+    Xform<T> x;
+    if (has_xform) x = parse_xform(j, ptr);
+    Built<T> n = body(type, j, ptr);
+    Aabb<T>& b = n.box;
     const bool bounded = !b.is_empty() && finite_box(b);
     if (has_xform) {
-      prog_.code.push_back({Op::pop_xform, xi, 0});
-      --points_;
-      b = transform_box(prog_.xforms[xi], b);
+      b = transform_box(x, b);
+      n.sdf = AnySdf<T>(TransformNode<T>(std::move(n.sdf), x.r, x.t, x.s, b));
     }
     if (j.contains("offset")) {
       const T r = number(j, ptr, "offset", Need::finite);
-      prog_.code.push_back({Op::offset, param(r), 0});
-      if (r < 0) kind = weakest(kind, SdfKind::bound);
       if (r > 0) b = b.grown(r);
+      n.sdf = AnySdf<T>(ModifierNode<T>(ModifierNode<T>::Op::offset, std::move(n.sdf), r, b));
     }
     if (j.contains("shell")) {
       const T s = number(j, ptr, "shell", Need::positive);
-      prog_.code.push_back({Op::shell, param(s), 0});
-      // |S| - t is exact for an exact S; for a bound it may overestimate inside the shell.
-      if (kind != SdfKind::exact) kind = SdfKind::implicit;
       b = b.grown(s);
+      n.sdf = AnySdf<T>(ModifierNode<T>(ModifierNode<T>::Op::shell, std::move(n.sdf), s, b));
     }
     // A transform or growth cannot make a bounded shape unbounded: only overflow can.
     if (bounded && (b.is_empty() || !finite_box(b))) { // NaN corners leave the box empty
@@ -179,25 +189,11 @@ template <class T> class SceneCompiler {
       bad(ptr, buf);
     }
     --depth_;
-    return b;
+    return n;
   }
 
  private:
   enum class Need { finite, positive, non_negative };
-
-  std::uint32_t param(T v) {
-    prog_.params.push_back(v);
-    return std::uint32_t(prog_.params.size() - 1);
-  }
-  std::uint32_t params(std::initializer_list<T> v) {
-    const auto at = std::uint32_t(prog_.params.size());
-    prog_.params.insert(prog_.params.end(), v);
-    return at;
-  }
-  void push_value() {
-    ++values_;
-    prog_.max_values = std::max(prog_.max_values, values_);
-  }
 
   void check_keys(const Json& j, const std::string& ptr, const std::string& type,
                   std::initializer_list<const char*> allowed) const {
@@ -297,16 +293,11 @@ template <class T> class SceneCompiler {
       for (auto it = r.begin(); it != r.end(); ++it)
         if (it.key() != "axis" && it.key() != "degrees")
           bad(rp + "/" + it.key(), "unknown key (rotate has: axis, degrees)");
-      Vec3<T> axis = vec3(r, rp, "axis", Need::finite);
+      const Vec3<T> axis = vec3(r, rp, "axis", Need::finite);
       if (!(norm(axis) > T(0))) bad(rp + "/axis", "the rotation axis must not be zero");
-      axis = normalized(axis);
-      // Reduced to (-360, 360) in double first: a huge angle in float would be inf.
-      const double ang = std::fmod(finite_double(r, rp, "degrees"), 360.0) * M_PI / 180.0;
-      const T c = T(std::cos(ang)), s = T(std::sin(ang)), C = T(1) - c;
-      const T x_ = axis.x, y = axis.y, z = axis.z;
-      x.r = {{c + x_ * x_ * C, x_ * y * C - z * s, x_ * z * C + y * s, //
-              y * x_ * C + z * s, c + y * y * C, y * z * C - x_ * s,   //
-              z * x_ * C - y * s, z * y * C + x_ * s, c + z * z * C}};
+      // Reduced to (-360, 360) in double first: a huge angle in float would be inf. The
+      // library's rotation (Rodrigues' formula, exact at quarter turns).
+      x.r = Mat3<T>::axis_degrees(axis, T(std::fmod(finite_double(r, rp, "degrees"), 360.0)));
     }
     if (j.contains("translate")) x.t = vec3(j, ptr, "translate", Need::finite);
     return x;
@@ -335,13 +326,12 @@ template <class T> class SceneCompiler {
     return r;
   }
 
-  Aabb<T> body(const std::string& type, const Json& j, const std::string& ptr, SdfKind& kind) {
+  Built<T> body(const std::string& type, const Json& j, const std::string& ptr) {
     if (type == "sphere") {
       check_keys(j, ptr, type, {"center", "radius"});
       const Vec3<T> c = vec3_or(j, ptr, "center", Vec3<T>::zero());
       const T r = number(j, ptr, "radius", Need::positive);
-      prog_.code.push_back({Op::sphere, params({c.x, c.y, c.z, r}), 0});
-      return leaf(Aabb<T>::of(c).grown(r));
+      return leaf(Sphere<T>{c, r}, Aabb<T>::of(c).grown(r));
     }
     if (type == "box") {
       check_keys(j, ptr, type, {"center", "size", "half_size", "rounding"});
@@ -355,8 +345,8 @@ template <class T> class SceneCompiler {
         h = vec3(j, ptr, "half_size", Need::positive);
       const T r = number_or(j, ptr, "rounding", Need::non_negative, T(0));
       if (r > min_component(h)) bad(ptr + "/rounding", "must not exceed the smallest half size");
-      prog_.code.push_back({Op::box, params({c.x, c.y, c.z, h.x, h.y, h.z, r}), 0});
-      return leaf(Aabb<T>(c - h, c + h));
+      if (r > T(0)) return leaf(RoundedBox<T>{h, r, c}, Aabb<T>(c - h, c + h));
+      return leaf(Box<T>{h, c}, Aabb<T>(c - h, c + h));
     }
     if (type == "capsule" || type == "cylinder") {
       check_keys(j, ptr, type, {"a", "b", "radius"});
@@ -364,9 +354,8 @@ template <class T> class SceneCompiler {
       const T r = number(j, ptr, "radius", Need::positive);
       if (type == "cylinder" && !(norm(b - a) > T(0)))
         bad(ptr + "/b", "a cylinder needs distinct end points a and b");
-      prog_.code.push_back({type == "capsule" ? Op::capsule : Op::cylinder,
-                            params({a.x, a.y, a.z, b.x, b.y, b.z, r}), 0});
-      return leaf(Aabb<T>::of(a, b).grown(r));
+      if (type == "capsule") return leaf(Capsule<T>{a, b, r}, Aabb<T>::of(a, b).grown(r));
+      return leaf(CappedCylinder<T>{a, b, r}, Aabb<T>::of(a, b).grown(r));
     }
     if (type == "cone") {
       check_keys(j, ptr, type, {"a", "b", "radius_a", "radius_b"});
@@ -375,28 +364,26 @@ template <class T> class SceneCompiler {
       const T rb = number(j, ptr, "radius_b", Need::non_negative);
       if (!(norm(b - a) > T(0))) bad(ptr + "/b", "a cone needs distinct end points a and b");
       if (!(ra > 0 || rb > 0)) bad(ptr, "a cone needs radius_a > 0 or radius_b > 0");
-      prog_.code.push_back({Op::cone, params({a.x, a.y, a.z, b.x, b.y, b.z, ra, rb}), 0});
-      return leaf(merge(Aabb<T>::of(a).grown(ra), Aabb<T>::of(b).grown(rb)));
+      return leaf(CappedCone<T>{a, b, ra, rb},
+                  merge(Aabb<T>::of(a).grown(ra), Aabb<T>::of(b).grown(rb)));
     }
     if (type == "torus") {
       check_keys(j, ptr, type, {"center", "major_radius", "minor_radius"});
       const Vec3<T> c = vec3_or(j, ptr, "center", Vec3<T>::zero());
       const T R = number(j, ptr, "major_radius", Need::positive);
       const T r = number(j, ptr, "minor_radius", Need::positive);
-      prog_.code.push_back({Op::torus, params({c.x, c.y, c.z, R, r}), 0});
-      return leaf(Aabb<T>(c - Vec3<T>{R + r, R + r, r}, c + Vec3<T>{R + r, R + r, r}));
+      return leaf(Torus<T>{c, R, r},
+                  Aabb<T>(c - Vec3<T>{R + r, R + r, r}, c + Vec3<T>{R + r, R + r, r}));
     }
     if (type == "plane") {
       check_keys(j, ptr, type, {"normal", "point"});
       Vec3<T> n = vec3(j, ptr, "normal", Need::finite);
       if (!(norm(n) > T(0))) bad(ptr + "/normal", "the normal must not be zero");
-      n = normalized(n);
       const Vec3<T> p = vec3_or(j, ptr, "point", Vec3<T>::zero());
-      prog_.code.push_back({Op::plane, params({n.x, n.y, n.z, dot(n, p)}), 0});
-      return leaf(Aabb<T>::infinite());
+      return leaf(Plane<T>::through(p, n), Aabb<T>::infinite());
     }
-    if (type == "mesh") return mesh(j, ptr, kind);
-    if (type == "union" && j.contains("accelerate")) return accelerated_union(j, ptr, kind);
+    if (type == "mesh") return mesh(j, ptr);
+    if (type == "union" && j.contains("accelerate")) return accelerated_union(j, ptr);
     if (type == "union" || type == "intersection" || type == "difference") {
       check_keys(j, ptr, type, {"children", "smooth"});
       const auto ch = j.find("children");
@@ -405,11 +392,11 @@ template <class T> class SceneCompiler {
         bad(ptr + "/children", "expected a non-empty array of nodes, got " + describe(*ch));
       const T k = number_or(j, ptr, "smooth", Need::non_negative, T(0));
       Aabb<T> b;
-      const std::size_t base = values_;
+      std::vector<AnySdf<T>> children;
       for (std::size_t i = 0; i < ch->size(); ++i) {
-        SdfKind ck = SdfKind::exact;
-        const Aabb<T> cb = node((*ch)[i], ptr + "/children/" + std::to_string(i), ck);
-        kind = weakest(kind, ck);
+        Built<T> c = node((*ch)[i], ptr + "/children/" + std::to_string(i));
+        const Aabb<T> cb = c.box;
+        children.push_back(std::move(c.sdf));
         if (type == "union")
           b.extend(cb);
         else if (type == "intersection")
@@ -417,21 +404,18 @@ template <class T> class SceneCompiler {
         else if (i == 0)
           b = cb;
       }
-      (void)base;
-      const Op op =
-          type == "union" ? Op::unite : (type == "intersection" ? Op::intersect : Op::subtract);
-      prog_.code.push_back({op, param(k), std::uint32_t(ch->size())});
-      values_ -= ch->size() - 1;
-      if (ch->size() > 1) kind = weakest(kind, k > 0 ? SdfKind::implicit : SdfKind::bound);
+      const CsgOp op = type == "union"          ? CsgOp::unite
+                       : type == "intersection" ? CsgOp::intersect
+                                                : CsgOp::subtract;
       if (k > 0 && type == "union") b = b.grown(k);
       if (b.is_empty()) b = Aabb<T>(Vec3<T>::zero(), Vec3<T>::zero());
-      return b;
+      return {AnySdf<T>(CsgNode<T>(op, std::move(children), k, b)), b};
     }
     if (type == "transform") {
       check_keys(j, ptr, type, {"child"});
       const auto c = j.find("child");
       if (c == j.end()) bad(ptr, "missing \"child\" (the node to transform)");
-      return node(*c, ptr + "/child", kind);
+      return node(*c, ptr + "/child");
     }
     bad(ptr + "/type", "unknown node type \"" + shorten(type, 40) +
                            "\" (expected sphere, box, capsule, cylinder, cone, torus, plane, mesh, "
@@ -440,7 +424,7 @@ template <class T> class SceneCompiler {
 
   /// A sharp union whose children are compiled separately and searched through a BVH of their
   /// boxes (`"accelerate": true`).
-  Aabb<T> accelerated_union(const Json& j, const std::string& ptr, SdfKind& kind) {
+  Built<T> accelerated_union(const Json& j, const std::string& ptr) {
     check_keys(j, ptr, "union", {"children", "smooth", "accelerate"});
     if (!j["accelerate"].is_boolean()) bad(ptr + "/accelerate", "expected true or false");
     const auto ch = j.find("children");
@@ -450,61 +434,34 @@ template <class T> class SceneCompiler {
     if (!j["accelerate"].get<bool>()) {
       Json copy = j;
       copy.erase("accelerate");
-      return body("union", copy, ptr, kind);
+      return body("union", copy, ptr);
     }
     if (number_or(j, ptr, "smooth", Need::non_negative, T(0)) > 0)
       bad(ptr + "/accelerate", "an accelerated union must be sharp (no \"smooth\")");
-#if EBGEOM_CLI_HAS_BVH_UNION
-    std::vector<Piece<T, SdfKind::exact>> exact;
-    std::vector<Piece<T, SdfKind::implicit>> other;
-    bool all_exact = true;
+    std::vector<AnySdf<T>> children;
     SdfKind children_kind = SdfKind::exact;
-    Aabb<T> b;
     for (std::size_t i = 0; i < ch->size(); ++i) {
-      auto sub = std::make_shared<Program<T>>();
-      SceneCompiler<T> c(file_, *sub, info_);
-      c.depth_ = depth_;
       const std::string cp = ptr + "/children/" + std::to_string(i);
-      SdfKind ck = SdfKind::exact;
-      sub->box = c.node((*ch)[i], cp, ck);
-      sub->scene_kind = ck;
+      Built<T> c = node((*ch)[i], cp);
       for (int a = 0; a < 3; ++a)
-        if (!std::isfinite(sub->box.lo[a]) || !std::isfinite(sub->box.hi[a]))
+        if (!std::isfinite(c.box.lo[a]) || !std::isfinite(c.box.hi[a]))
           bad(cp, "children of an accelerated union must be bounded (a plane is not)");
-      all_exact = all_exact && ck == SdfKind::exact;
-      children_kind = weakest(children_kind, ck);
-      b.extend(sub->box);
-      prog_.union_triangles += sub->triangle_count();
-      exact.push_back({sub});
-      other.push_back({sub});
+      children_kind = weakest(children_kind, c.sdf.dynamic_kind());
+      children.push_back(std::move(c.sdf));
     }
-    if (all_exact) {
-      auto u = ExactUnion<T>::make(std::move(exact));
-      if (!u) bad(ptr, u.error().what());
-      prog_.code.push_back({Op::bvh_union, std::uint32_t(prog_.exact_unions.size()), 1});
-      prog_.exact_unions.push_back(std::make_shared<const ExactUnion<T>>(std::move(*u)));
-    } else {
-      auto u = BoundUnion<T>::make(std::move(other));
-      if (!u) bad(ptr, u.error().what());
-      prog_.code.push_back({Op::bvh_union, std::uint32_t(prog_.bound_unions.size()), 0});
-      prog_.bound_unions.push_back(std::make_shared<const BoundUnion<T>>(std::move(*u)));
-    }
-    kind = weakest(kind, children_kind);
-    if (ch->size() > 1) kind = weakest(kind, SdfKind::bound);
-    push_value();
-    return b;
-#else
-    bad(ptr + "/accelerate", "BVH-accelerated unions are not available in this build");
-#endif
+    const std::size_t count = children.size();
+    auto u = BvhUnion<AnySdf<T>>::make(std::move(children));
+    if (!u) bad(ptr, u.error().what());
+    const Aabb<T> b = u->bounds();
+    return {AnySdf<T>(BvhUnionNode<T>(std::move(*u), children_kind, count)), b};
   }
 
-  Aabb<T> leaf(const Aabb<T>& b) {
+  template <class Shape> Built<T> leaf(Shape shape, const Aabb<T>& b) {
     ++info_.primitives;
-    push_value();
-    return b;
+    return {AnySdf<T>(std::move(shape)), b};
   }
 
-  Aabb<T> mesh(const Json& j, const std::string& ptr, SdfKind& kind) {
+  Built<T> mesh(const Json& j, const std::string& ptr) {
     check_keys(j, ptr, "mesh",
                {"path", "generate", "sign", "subdivisions", "radius", "major_radius",
                 "minor_radius", "min", "max"});
@@ -556,24 +513,19 @@ template <class T> class SceneCompiler {
       if (!r) bad(ptr, r.error().what());
       soup = std::move(*r);
     }
-    auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, label, sign));
+    auto sdf = std::make_shared<const SignedMeshSdf<T>>(build_mesh_sdf(soup, label, sign));
     info_.mesh_signs.push_back(
         {ptr, j.contains("path") ? label : "generate: " + j["generate"].template get<std::string>(),
-         sign, sdf->sign(), sdf->sign_reason()});
-    const Aabb<T> b = sdf->bounds();
-    prog_.code.push_back({Op::mesh, std::uint32_t(prog_.meshes.size()),
-                          sign == SignMode::unsigned_distance ? 1u : 0u});
-    kind = weakest(kind, sdf->sign_kind());
-    prog_.meshes.push_back(std::move(sdf));
+         sign, sdf->resolved_mode(), sdf->reason()});
     ++info_.meshes;
-    push_value();
-    return b;
+    triangles_ += sdf->triangle_count();
+    const Aabb<T> b = sdf->bounds();
+    return {AnySdf<T>(MeshNode<T>{std::move(sdf)}), b};
   }
 
   std::string file_, dir_;
-  Program<T>& prog_;
   SceneInfo& info_;
-  std::size_t values_ = 0, points_ = 0;
+  std::size_t triangles_ = 0;
   std::size_t depth_ = 0;
   static constexpr std::size_t max_depth = 200;
 };
@@ -581,12 +533,11 @@ template <class T> class SceneCompiler {
 } // namespace internal
 
 /// Compiles the scene `doc` (read from `file`, used in messages and to resolve relative mesh
-/// paths) into a program. Throws ToolError (input) naming the offending JSON pointer.
+/// paths) into the library's SDFs. Throws ToolError (input) naming the offending JSON pointer.
 template <class T>
-Program<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* info = nullptr) {
-  Program<T> prog;
+SceneSdf<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* info = nullptr) {
   SceneInfo si;
-  internal::SceneCompiler<T> c(file, prog, si);
+  internal::SceneCompiler<T> c(file, si);
   const Json* root = &doc;
   std::string ptr;
   if (doc.is_object() && doc.contains("root")) {
@@ -600,30 +551,27 @@ Program<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* in
     root = &doc["root"];
     ptr = "/root";
   }
-  SdfKind kind = SdfKind::exact;
-  prog.box = c.node(*root, ptr, kind);
-  prog.scene_kind = kind;
+  internal::Built<T> b = c.node(*root, ptr);
   if (info) *info = si;
-  return prog;
+  return SceneSdf<T>(std::move(b.sdf), b.box, c.triangles());
 }
 
 /// Reads and compiles a scene file.
-template <class T> Program<T> load_scene(const std::string& path, SceneInfo* info = nullptr) {
+template <class T> SceneSdf<T> load_scene(const std::string& path, SceneInfo* info = nullptr) {
   return compile_scene<T>(read_json_file(path), path, info);
 }
 
-/// A program evaluating one mesh file.
+/// The SDF of `soup` (read from `path`, named in errors) with sign mode `sign`, as a scene of one
+/// mesh (`SceneSdf::mesh`, `SceneSdf::visit`).
 template <class T>
-Program<T> mesh_program(const std::string& path, SignMode sign, PolygonSoup<T>* keep = nullptr) {
-  PolygonSoup<T> soup = load_mesh<T>(path);
-  Program<T> prog;
-  auto sdf = std::make_shared<const CliMeshSdf<T>>(build_mesh_sdf(soup, path, sign));
-  prog.box = sdf->bounds();
-  prog.code.push_back({Op::mesh, 0, sign == SignMode::unsigned_distance ? 1u : 0u});
-  prog.scene_kind = sdf->sign_kind();
-  prog.meshes.push_back(std::move(sdf));
-  if (keep) *keep = std::move(soup);
-  return prog;
+SceneSdf<T> mesh_scene(const PolygonSoup<T>& soup, const std::string& path, SignMode sign) {
+  return SceneSdf<T>::of_mesh(
+      std::make_shared<const SignedMeshSdf<T>>(build_mesh_sdf(soup, path, sign)), sign);
+}
+
+/// Reads the mesh file `path` (`load_mesh`) into a scene of one mesh (`mesh_scene`).
+template <class T> SceneSdf<T> load_mesh_scene(const std::string& path, SignMode sign) {
+  return mesh_scene<T>(load_mesh<T>(path), path, sign);
 }
 
 } // namespace ebgeom::scene
