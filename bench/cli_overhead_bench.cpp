@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
   const std::string sign_name = argc > 6 ? argv[6] : "auto";
   auto sign = parse_sign_mode(sign_name);
   if (!sign) {
-    std::fprintf(stderr, "%s\n", sign.error().what());
+    std::fprintf(stderr, "%s\n", sign.error().what().c_str());
     return 2;
   }
 
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
   so.mode = *sign;
   auto lib = SignedMeshSdf<double>::build(soup, so);
   if (!lib) {
-    std::fprintf(stderr, "%s\n", lib.error().what());
+    std::fprintf(stderr, "%s\n", lib.error().what().c_str());
     return 1;
   }
   const bool pseudo = lib->resolved_mode() == SignMode::pseudonormal;

@@ -393,7 +393,7 @@ template <class T> py::dict query_as(const Sdf& s, const py::handle& points, int
   const ExecOptions ex = exec_of(threads);
   {
     py::gil_scoped_release nogil;
-    const auto& sdf = mesh.signed_sdf(); // the CLI's query, plus the feature
+    const auto& sdf = mesh; // the CLI's query, plus the feature
     parallel_for(
         0, n, 256,
         [&](std::size_t b, std::size_t e) {
@@ -632,12 +632,14 @@ template <class T> py::dict sample_sparse_as(const Sdf& s, const GridArgs& a) {
   // then no tile can be skipped and every one is kept (as `ebgeom sdf -o OUT.npz --band W`).
   std::uint64_t tiles = 1;
   for (std::size_t n : spec.dims) tiles *= (n + grid_tile - 1) / grid_tile;
-  if (kind_of(impl.prog) == SdfKind::implicit)
+  // (A mesh with a winding sign is sampled through its own SDF, which signs far tiles by proof and
+  // skips them as an exact SDF does.)
+  if (kind_of(impl.prog) == SdfKind::implicit && !impl.mesh)
     require_memory(
         bytes_of(tiles, sizeof(std::int32_t) + 12 + grid_tile * grid_tile * grid_tile * sizeof(T)),
         "a band of " + grid_name(spec) + " of an implicit SDF (it keeps every tile)",
-        "a winding sign (what sign=\"auto\" picks for a mesh with holes) cannot skip tiles far "
-        "from the surface: use sign=\"pseudonormal\" or \"unsigned\", or lower res");
+        "only the sign of this scene is meaningful, so no tile far from the surface can be "
+        "skipped: give its meshes sign=\"pseudonormal\", or lower res");
   else
     require_memory(bytes_of(tiles, sizeof(std::int32_t)), "the tile table of " + grid_name(spec),
                    "lower res or raise dx, or shrink the box");

@@ -94,15 +94,17 @@ def test_sparse_equals_dense_band(shifted_sphere, precision, args, kw):
     assert set(np.unique(g.tile_code[g.tile_code < 0])) <= {-1, -2}
 
 
-def test_sparse_implicit_keeps_every_tile(tmp_path):
+def test_sparse_winding_sign_equals_the_dense_band(tmp_path):
     v, f = icosphere(2)
     keep = ~np.all(v[f][:, :, 2] > 0.8, axis=1)  # open: auto picks a winding sign
     sdf = ebgeom.MeshSdf(ebgeom.Mesh(v, f[keep]))
     assert sdf.kind == "implicit"
     g = ebgeom.sample_grid(sdf, res=20, band=1, sparse=True)
-    assert len(g.blocks) == g.tile_code.size and np.all(g.tile_code >= 0)
-    np.testing.assert_array_equal(g.to_dense().values,
-                                  ebgeom.sample_grid(sdf, res=20, band=1).values)
+    dense = ebgeom.sample_grid(sdf, res=20, band=1)
+    # far tiles may be skipped (their winding sign proven), never one the band needs
+    k, j, i = np.nonzero(np.abs(dense.values) < g.band)
+    assert np.all(g.tile_code[k // 8, j // 8, i // 8] >= 0)
+    np.testing.assert_array_equal(g.to_dense().values, dense.values)
 
 
 def test_sparse_memory_proportional_to_kept_tiles():

@@ -158,12 +158,13 @@ TEST(SceneLimits, OverflowingBoundsAreNotCalledUnbounded) {
 }
 
 TEST(SceneLimits, GridsWithNaNAreNeverWritten) {
-  // Every value is in range, but the capped cylinder's formula multiplies three lengths: 1e51
-  // overflows float inside the evaluation. Wrote a half-NaN grid with null min/max and exit 0.
+  // Every value is in range, but two nested scales of 1e-15 map the grid's points to 1e30 in the
+  // sphere's frame, whose squared length overflows float inside the evaluation. (This once wrote
+  // a half-NaN grid with null min/max and exit 0.)
   const std::string dir = test_dir();
-  const RunResult r =
-      sdf(dir, R"({"type": "cylinder", "a": [0, 0, -1e17], "b": [0, 0, 1e17], "radius": 1e17})",
-          "--json");
+  const std::string nested = R"({"type": "transform", "scale": 1e-15,
+      "child": {"type": "sphere", "radius": 1, "scale": 1e-15}})";
+  const RunResult r = sdf(dir, nested, "--json --box -1 -1 -1 1 1 1");
   EXPECT_EQ(r.code, 3) << r.err << r.out;
   EXPECT_TRUE(contains(r.err, "samples are NaN or infinite")) << r.err;
   EXPECT_TRUE(contains(r.err, "nothing written")) << r.err;
@@ -171,12 +172,20 @@ TEST(SceneLimits, GridsWithNaNAreNeverWritten) {
   EXPECT_FALSE(exists(dir + "/s.npy"));
   expect_one_short_line(r);
   // In double the same scene is fine, and --json has numbers for min and max.
-  const RunResult d =
-      sdf(dir, R"({"type": "cylinder", "a": [0, 0, -1e17], "b": [0, 0, 1e17], "radius": 1e17})",
-          "--json --precision double");
+  const RunResult d = sdf(dir, nested, "--json --box -1 -1 -1 1 1 1 --precision double");
   ASSERT_EQ(d.code, 0) << d.err;
   const auto j = nlohmann::json::parse(d.out);
   EXPECT_TRUE(j["min"].is_number() && j["max"].is_number()) << d.out;
+  // Lengths of 1e17 are within float's range for the library's capped cylinder (no product of
+  // three lengths): the grid is written, its extremes the closed form's at the cell centres.
+  const RunResult c =
+      sdf(dir, R"({"type": "cylinder", "a": [0, 0, -1e17], "b": [0, 0, 1e17], "radius": 1e17})",
+          "--json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  const auto jc = nlohmann::json::parse(c.out);
+  ASSERT_TRUE(jc["min"].is_number() && jc["max"].is_number()) << c.out;
+  EXPECT_LT(jc["min"].get<double>(), 0);
+  EXPECT_GT(jc["max"].get<double>(), 0);
 }
 
 TEST(SceneLimits, MeshCoordinatesBeyondThePrecisionAreRefused) {

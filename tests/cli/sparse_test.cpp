@@ -287,14 +287,14 @@ TEST(SparseNpz, Errors) {
           "/no/p.png'");
   EXPECT_EQ(r.code, 4) << r.err;
   for (const auto& name : list_dir(dir)) EXPECT_EQ(name.find("tmp"), std::string::npos) << name;
-  // An implicit SDF keeps every tile: refused up front when they cannot fit, naming the remedy.
+  // A scene of implicit kind keeps every tile: refused up front when they cannot fit, naming the
+  // remedy. (A mesh file with a winding sign signs far tiles by proof and skips them.)
   write_text(dir + "/open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n");
-  r = run("sdf '" + dir + "/open.obj' -o '" + dir +
-          "/o.npz' --res 200000 200000 100 --band 2 "
-          "--sign fast-winding");
+  write_text(dir + "/open.json", R"({"type": "mesh", "path": "open.obj", "sign": "fast-winding"})");
+  r = run("sdf '" + dir + "/open.json' -o '" + dir + "/o.npz' --res 20000 20000 100 --band 2");
   EXPECT_EQ(r.code, 5) << r.err;
   EXPECT_NE(r.err.find("implicit SDF (it keeps every tile)"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("--sign pseudonormal"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\"sign\": \"pseudonormal\""), std::string::npos) << r.err;
 }
 
 TEST(NpzWriter, Zip64RecordsAreReadBack) {

@@ -243,22 +243,25 @@ TEST_P(MpiErrors, UnwritableOutputEndsEveryRankWithOneError) {
 }
 
 TEST_P(MpiErrors, GridsWithNaNAreNeverWritten) {
-  // Every value is in range, but the capped cylinder's formula overflows float inside the
-  // evaluation: the serial tool refuses such a grid, and so must every rank here.
+  // Every value is in range, but two nested scales of 1e-15 map the points to 1e30 in the
+  // sphere's frame, whose squared length overflows float inside the evaluation: the serial tool
+  // refuses such a grid, and so must every rank here.
   const int ranks = GetParam();
   const std::string dir = test_dir();
-  std::ofstream(dir + "/s.json")
-      << R"({"type": "cylinder", "a": [0, 0, -1e17], "b": [0, 0, 1e17], "radius": 1e17})";
+  std::ofstream(dir + "/s.json") << R"({"type": "transform", "scale": 1e-15,
+      "child": {"type": "sphere", "radius": 1, "scale": 1e-15}})";
   for (const char* ext : {".npy", ".pvti"}) {
     const std::string out = dir + "/x" + ext;
-    const RunResult r = run_mpi(ranks, "sdf '" + dir + "/s.json' -o '" + out + "' --res 16");
+    const RunResult r =
+        run_mpi(ranks, "sdf '" + dir + "/s.json' -o '" + out + "' --res 16 --box -1 -1 -1 1 1 1");
     EXPECT_EQ(r.code, 3) << ext << "\n" << r.err; // exit_input, as the serial tool
     EXPECT_EQ(error_lines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("samples are NaN or infinite"), std::string::npos) << r.err;
     EXPECT_FALSE(exists(out));
   }
   const RunResult d =
-      run_mpi(ranks, "sdf '" + dir + "/s.json' -o '" + dir + "/d.npy' --res 16 --precision double");
+      run_mpi(ranks, "sdf '" + dir + "/s.json' -o '" + dir +
+                         "/d.npy' --res 16 --box -1 -1 -1 1 1 1 --precision double");
   EXPECT_EQ(d.code, 0) << d.err;
 }
 
