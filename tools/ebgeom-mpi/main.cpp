@@ -263,20 +263,7 @@ template <class T> int run(const SdfOptions& o, const World& w) {
   const double load_max = *std::max_element(loads.begin(), loads.end());
   const double inside_fraction = ginside / double(spec.size());
   if (o.json) {
-    Json j;
-    j["input"] = o.input;
-    j["input_kind"] = in.scene ? "scene" : "mesh";
-    j["output"] = o.output;
-    j["triangles"] = in.prog.triangle_count();
-    j["dims"] = {spec.nx(), spec.ny(), spec.nz()};
-    j["box"] = {{"lo", {double(spec.box.lo.x), double(spec.box.lo.y), double(spec.box.lo.z)}},
-                {"hi", {double(spec.box.hi.x), double(spec.box.hi.y), double(spec.box.hi.z)}}};
-    j["spacing"] = {double(h.x), double(h.y), double(h.z)};
-    const Vec3<T> org = spec.origin();
-    j["origin"] = {double(org.x), double(org.y), double(org.z)};
-    j["centering"] = to_string(spec.centering);
-    j["precision"] = sizeof(T) == 4 ? "float" : "double";
-    j["band"] = gopt.band;
+    Json j = cli::grid_job_json(o, in, spec, gopt.band);
     j["timings"] = {{"load_s", load_max},
                     {"decompose_s", t2 - t1},
                     {"eval_s", emax},

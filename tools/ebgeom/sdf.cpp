@@ -80,20 +80,20 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   const bool progress = !o.quiet && !o.json && stderr_is_terminal();
   SampledGrid<T> grid;
   if (sparse) {
-    // Before sampling only the tile table is known, unless the SDF is implicit (a winding sign):
-    // then no tile can be skipped and every one is kept. Kept tiles are otherwise checked as they
-    // are allocated (sample_sparse_with_progress).
+    // Before sampling only the tile table is known, unless the SDF is an implicit scene: then no
+    // tile can be skipped and every one is kept. Kept tiles are otherwise checked as they are
+    // allocated (sample_sparse_with_progress).
     std::uint64_t tiles = 1;
     for (std::size_t d : spec.dims) tiles *= (d + grid_tile - 1) / grid_tile;
-    if (kind_of(prog) == SdfKind::implicit)
+    // A mesh file with a winding sign is sampled through its own SDF, which signs far tiles by
+    // proof (`has_split_sign_v`), so it skips them as an exact SDF does.
+    if (kind_of(prog) == SdfKind::implicit && !prog.mesh())
       require_memory(
           tiles * (sizeof(std::int32_t) + 12 + grid_tile * grid_tile * grid_tile * sizeof(T)),
           "a band of " + grid_name + " of an implicit SDF (it keeps every tile)",
-          scene ? "only the sign of this scene is meaningful, so no tile far from the surface "
-                  "can be skipped; lower the resolution (--res/--dx) or shrink --box"
-                : "a winding sign (what --sign auto picks for a mesh with holes) cannot skip "
-                  "tiles far from the surface: use --sign pseudonormal (an oriented mesh with "
-                  "small holes) or --sign unsigned, or lower the resolution (--res/--dx)");
+          "only the sign of this scene is meaningful, so no tile far from the surface can be "
+          "skipped; give its meshes \"sign\": \"pseudonormal\", lower the resolution "
+          "(--res/--dx) or shrink --box");
     else
       require_memory(tiles * sizeof(std::int32_t), "the tile table of " + grid_name);
     // A mesh file is sampled through the mesh SDF itself (tile and band searches).
@@ -140,20 +140,7 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   const std::size_t kept = grid.sparse.block_count();
 
   if (o.json) {
-    Json j;
-    j["input"] = o.input;
-    j["input_kind"] = scene ? "scene" : "mesh";
-    j["output"] = o.output;
-    j["triangles"] = prog.triangle_count();
-    j["dims"] = {spec.nx(), spec.ny(), spec.nz()};
-    j["box"] = {{"lo", {double(spec.box.lo.x), double(spec.box.lo.y), double(spec.box.lo.z)}},
-                {"hi", {double(spec.box.hi.x), double(spec.box.hi.y), double(spec.box.hi.z)}}};
-    j["spacing"] = {double(h.x), double(h.y), double(h.z)};
-    const Vec3<T> org = spec.origin();
-    j["origin"] = {double(org.x), double(org.y), double(org.z)};
-    j["centering"] = to_string(spec.centering);
-    j["precision"] = sizeof(T) == 4 ? "float" : "double";
-    j["band"] = gopt.band;
+    Json j = grid_job_json(o, in, spec, gopt.band);
     j["timings"] = {
         {"parse_s", t1 - t0}, {"build_s", t2 - t1}, {"eval_s", t3 - t2}, {"write_s", t4 - t3}};
     j["min"] = st.min;

@@ -191,4 +191,27 @@ template <class T> SdfInput<T> load_sdf_input(const SdfOptions& o, SignMode sign
   return in;
 }
 
+/// The fields of the `--json` summary that `ebgeom sdf` and `ebgeom-mpi sdf` share: the input,
+/// the output, the grid (dims, box, spacing, origin, centering), the precision and the band
+/// (length units).
+template <class T>
+Json grid_job_json(const SdfOptions& o, const SdfInput<T>& in, const GridSpec<T>& spec,
+                   double band) {
+  Json j;
+  j["input"] = o.input;
+  j["input_kind"] = in.scene ? "scene" : "mesh";
+  j["output"] = o.output;
+  j["triangles"] = in.prog.triangle_count();
+  j["dims"] = {spec.nx(), spec.ny(), spec.nz()};
+  j["box"] = {{"lo", {double(spec.box.lo.x), double(spec.box.lo.y), double(spec.box.lo.z)}},
+              {"hi", {double(spec.box.hi.x), double(spec.box.hi.y), double(spec.box.hi.z)}}};
+  const Vec3<T> h = spec.spacing(), org = spec.origin();
+  j["spacing"] = {double(h.x), double(h.y), double(h.z)};
+  j["origin"] = {double(org.x), double(org.y), double(org.z)};
+  j["centering"] = to_string(spec.centering);
+  j["precision"] = sizeof(T) == 4 ? "float" : "double";
+  j["band"] = band;
+  return j;
+}
+
 } // namespace ebgeom::cli
