@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Grid sampling benchmark (issue 5): dense exact grids (tile evaluation, the default, against
-// independent per-point searches, optionally coherent ones, and Embree 3's per-point closest query
+// independent per-point searches, and Embree 3's per-point closest query
 // on the same samples when built with EBGEOM_BENCH_HAVE_EMBREE), the
 // octree narrow band (dense and sparse output) against ebgeom's dense grid and OpenVDB's
 // meshToVolume (when built with EBGEOM_BENCH_HAVE_OPENVDB), thread scaling, and the memory of a
@@ -9,7 +9,7 @@
 //
 // Usage: ebgeom_bench_grid_bench [--mesh PATH] [--reps N] [--dense N] [--band N] [--sparse N]
 //                                [--cells C] [--threads T] [--only dense|band|sparse]
-//                                [--coherent] [--no-embree] [--check N]
+//                                [--no-embree] [--check N]
 // Defaults: ../shared/meshes/ogre.obj, 5 reps, dense 256^3, band 512^3, sparse 1024^3, 3 cells,
 // 2 threads. Box: the mesh's bounding box grown by 10% of its extent per side. float throughout.
 #include <algorithm>
@@ -49,7 +49,7 @@ struct Options {
   double cells = 3;
   int threads = 2;
   std::string only;
-  bool coherent = false, embree = true;
+  bool embree = true;
   std::size_t check = 200000; ///< samples (evenly strided) checked against Embree
 };
 
@@ -140,8 +140,6 @@ int main(int argc, char** argv) {
       o.threads = std::atoi(next());
     else if (a == "--only")
       o.only = next();
-    else if (a == "--coherent")
-      o.coherent = true;
     else if (a == "--no-embree")
       o.embree = false;
     else if (a == "--check")
@@ -182,14 +180,6 @@ int main(int argc, char** argv) {
     std::printf("  tile vs independent %.2fx; %.1f ns/sample tile, %.1f independent; %s\n",
                 ind / tile, per(tile), per(ind), a == b ? "identical values" : "VALUES DIFFER");
     double best = std::min(tile, ind);
-    if (o.coherent) {
-      opt.search = GridSearch::coherent;
-      const double coh = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(b), opt); });
-      print_row("dense exact, coherent (neighbour bound)", o.dense, 1, coh);
-      std::printf("  coherent vs independent %.2fx; %s\n", ind / coh,
-                  a == b ? "identical values" : "VALUES DIFFER");
-      best = std::min(best, coh);
-    }
 #if defined(EBGEOM_BENCH_HAVE_EMBREE)
     if (o.embree) {
       // Embree 3 per grid point: the same samples (GridSpec::point), one thread, x fastest.

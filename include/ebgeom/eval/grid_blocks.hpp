@@ -13,13 +13,11 @@
 ///   single tiles. Nodes are aligned to the whole grid's tiles, so a sub-range makes the same
 ///   decisions as the full grid. Leaves come out in Morton order (octant order, depth first).
 /// - `detail::eval_tile`: the values of one tile. Dense, with `GridSearch::tile` (the default),
-/// SDFs
-///   with a tile evaluation (`has_lattice_eval_v`) get one `eval_lattice` call. With a bounded
-///   query (`has_bounded_query_v`), each sample's search is bounded, in a band, by the band and,
-///   with `GridSearch::coherent`, by its neighbour's |S| plus their distance; samples the band
-///   search proves far get their sign from a neighbour inside the tile (a far sample's ball of
-///   radius > band >= spacing holds no surface, so its axis neighbours share its sign) or, failing
-///   that, from one full query.
+///   SDFs with a tile evaluation (`has_lattice_eval_v`) get one `eval_lattice` call. With a
+///   bounded query (`has_bounded_query_v`), each sample's search in a band is bounded by the band;
+///   samples the band search proves far get their sign from a neighbour inside the tile (a far
+///   sample's ball of radius > band >= spacing holds no surface, so its axis neighbours share its
+///   sign) or, failing that, from one full query.
 /// - SDFs with a split sign (`has_split_sign_v`, e.g. `SignedMeshSdf` with a winding sign) whose
 ///   kind is `implicit` (signs must not be propagated: a winding sign also changes across the
 ///   surfaces that fill holes, far from the mesh) are planned with the unsigned distance and
@@ -103,7 +101,6 @@ template <class T> struct GridPlan {
 template <class T> struct TileParams {
   T band = 0; ///< 0 = dense
   BandFill outside = BandFill::clamp;
-  bool coherent = true;
   bool tile = false;          ///< dense values through `eval_lattice` (see `GridSearch::tile`)
   bool can_propagate = false; ///< band >= the largest spacing: far samples share neighbours' signs
   bool split = false; ///< split-sign SDF of kind `implicit`: signs by proof (see the file comment)
@@ -122,16 +119,6 @@ inline T far_value(const TileParams<T>& prm, T centre_value, T centre_dist) noex
 template <class T> inline T band_value(const TileParams<T>& prm, T v) noexcept {
   if (prm.outside == BandFill::clamp && std::abs(v) > prm.band) return std::copysign(prm.band, v);
   return v;
-}
-
-/// The sample before local sample (x, y, z) in scan order that is its axis neighbour, or -1.
-inline int scan_neighbour(std::size_t x, std::size_t y, std::size_t z) noexcept {
-  constexpr int W = int(grid_tile);
-  const int l = int(x) + W * (int(y) + W * int(z));
-  if (x > 0) return l - 1;
-  if (y > 0) return l - W;
-  if (z > 0) return l - W * W;
-  return -1;
 }
 
 /// Gathers the `s[0]·s[1]·s[2]` lattice points of the tile at `o` (x fastest), evaluates them all
@@ -231,7 +218,6 @@ void eval_split_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
   std::array<std::size_t, 3> size;
   for (int a = 0; a < 3; ++a) size[a] = std::min(f.n[a], base[a] + W) - base[a];
   const T eps = lipschitz_slack<T>();
-  const T tiny = std::numeric_limits<T>::min();
   // Distances: in the band, vals = d (near[l]); farther, vals = a lower bound >= band.
   bool near[W * W * W];
   for (std::size_t z = 0; z < size[2]; ++z)
@@ -248,15 +234,7 @@ void eval_split_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
             continue;
           }
         }
-        T bound = prm.band;
-        const int q = prm.coherent ? scan_neighbour(x, y, z) : -1;
-        if (q >= 0 && near[q]) {
-          const Vec3<T> pq = f.point(base[0] + std::size_t(q) % W, base[1] + std::size_t(q) / W % W,
-                                     base[2] + std::size_t(q) / (W * W));
-          bound = std::min(bound, (vals[q] + norm(p - pq)) * (T(1) + eps) + tiny);
-        }
-        T d = sdf.unsigned_within(p, bound);
-        if (!(d <= bound) && bound < prm.band) d = sdf.unsigned_within(p, prm.band);
+        const T d = sdf.unsigned_within(p, prm.band);
         near[l] = d <= prm.band;
         vals[l] = near[l] ? d : prm.band;
       }
@@ -297,7 +275,6 @@ void eval_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
   const std::size_t sx = std::min(f.n[0], i0 + W) - i0, sy = std::min(f.n[1], j0 + W) - j0,
                     sz = std::min(f.n[2], k0 + W) - k0;
   const T eps = lipschitz_slack<T>();
-  const T tiny = std::numeric_limits<T>::min();
 
   if constexpr (has_split_sign_v<S>) {
     if (prm.band > 0 && prm.split) {
@@ -333,16 +310,7 @@ void eval_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
                 continue;
               }
             }
-            T bound = prm.band;
-            const int q = prm.coherent ? scan_neighbour(x, y, z) : -1;
-            if (q >= 0 && state[q] == 0) {
-              const Vec3<T> pq = f.point(i0 + std::size_t(q) % W, j0 + std::size_t(q) / W % W,
-                                         k0 + std::size_t(q) / (W * W));
-              const T seed = (std::abs(vals[q]) + norm(p - pq)) * (T(1) + eps) + tiny;
-              bound = std::min(bound, seed);
-            }
-            T v = sdf.bounded(p, bound);
-            if (!(std::abs(v) <= bound) && bound < prm.band) v = sdf.bounded(p, prm.band);
+            const T v = sdf.bounded(p, prm.band);
             if (std::abs(v) <= prm.band) {
               vals[l] = v;
               state[l] = 0;
@@ -408,27 +376,6 @@ void eval_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
           for (std::size_t x = 0; x < sx; ++x) {
             const std::size_t l = x + W * (y + W * z);
             if (state[l] == 0) vals[l] = band_value(prm, vals[l]);
-          }
-      return;
-    }
-    if (prm.coherent) {
-      for (std::size_t z = 0; z < sz; ++z)
-        for (std::size_t y = 0; y < sy; ++y)
-          for (std::size_t x = 0; x < sx; ++x) {
-            const std::size_t l = x + W * (y + W * z);
-            const Vec3<T> p = f.point(i0 + x, j0 + y, k0 + z);
-            const int q = scan_neighbour(x, y, z);
-            T v;
-            if (q < 0) {
-              v = sdf(p);
-            } else {
-              const Vec3<T> pq = f.point(i0 + std::size_t(q) % W, j0 + std::size_t(q) / W % W,
-                                         k0 + std::size_t(q) / (W * W));
-              const T bound = (std::abs(vals[q]) + norm(p - pq)) * (T(1) + eps) + tiny;
-              v = sdf.bounded(p, bound);
-              if (!(std::abs(v) <= bound)) v = sdf(p); // rounding beat the slack: full search
-            }
-            vals[l] = v;
           }
       return;
     }
@@ -581,7 +528,6 @@ TileParams<sdf_scalar_t<S>> tile_params(const S& sdf, const GridSpec<sdf_scalar_
   TileParams<T> prm;
   prm.band = T(opt.band);
   prm.outside = opt.outside;
-  prm.coherent = opt.search == GridSearch::coherent;
   prm.tile = opt.search == GridSearch::tile;
   const Vec3<T> h = spec.spacing();
   T hmax = 0;

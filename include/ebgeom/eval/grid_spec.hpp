@@ -159,11 +159,10 @@ enum class GridSearch : std::uint8_t {
   /// Every sample is searched for on its own; in a narrow band, SDFs with a bounded query
   /// (`has_bounded_query_v`) search only within the band.
   independent,
-  /// SDFs with a bounded query also seed each sample's search with its neighbour's value: S is
-  /// 1-Lipschitz, so |S(p)| <= |S(q)| + |p - q| (inflated by 64 ulps). Same values. On the ogre
-  /// mesh it gave no gain (0.97x at 256^3, docs/performance.md): `MeshSdf`'s search already
-  /// shrinks its bound to the nearest box's farthest distance at the first nodes.
-  coherent
+  /// Formerly seeded each sample's bounded search with its neighbour's value; it gave no gain
+  /// (0.97x on the ogre mesh at 256^3) and is removed: now the same as `independent`.
+  coherent [[deprecated("GridSearch::coherent is removed; it now searches as independent")]] =
+      independent
 };
 
 /// Options of `sample_grid`, `sample_grid_box` and `sample_grid_sparse`.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-// Dense (coherent), narrow-band, sub-box and sparse grid sampling against per-point evaluation,
+// Dense, narrow-band, sub-box and sparse grid sampling against per-point evaluation,
 // on mesh SDFs (with a bounded query) and analytic SDFs (exact and bound kinds).
 #include <gtest/gtest.h>
 
@@ -123,7 +123,7 @@ TYPED_TEST(GridSamplingTest, DenseMeshEqualsPointwiseBitwise) {
     const auto sdf = shape == 0 ? torus_sdf<T>() : icosphere_sdf<T>();
     const auto g = odd_grid<T>(37, 29, 21);
     const auto ref = pointwise(sdf, g);
-    for (GridSearch search : {GridSearch::coherent, GridSearch::independent})
+    for (GridSearch search : {GridSearch::tile, GridSearch::independent})
       for (int threads : {1, 2}) {
         GridOptions opt;
         opt.exec.threads = threads;
@@ -165,8 +165,6 @@ TYPED_TEST(GridSamplingTest, NarrowBandMeshIsClampedDense) {
         first = band;
       else
         expect_bitwise(band, first);
-      opt.search = GridSearch::coherent; // same values with neighbour-seeded searches
-      expect_bitwise(sampled(sdf, g, opt), band);
       opt.outside = BandFill::lower_bound;
       expect_lower_bound(sampled(sdf, g, opt), dense, T(opt.band));
     }
