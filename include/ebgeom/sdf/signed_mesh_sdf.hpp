@@ -198,6 +198,17 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
     return c;
   }
 
+  /// Bounded query for grid samplers (`has_bounded_query_v`, as `MeshSdf::bounded`): exactly
+  /// `(*this)(p)` (bit for bit) whenever |S(p)| <= `max_abs`, otherwise a value whose magnitude
+  /// exceeds `max_abs` and whose sign means nothing. The search is bounded by `max_abs`; the
+  /// winding modes compute their sign only for a value within it. With this, bands and coherent
+  /// dense grids search as `MeshSdf`'s do.
+  T bounded(const Vec3<T>& p, T max_abs) const noexcept {
+    const T v = sdf_.bounded(p, max_abs);
+    if (mode_ == SignMode::pseudonormal || !(std::abs(v) <= max_abs)) return v;
+    return with_sign(std::abs(v), p);
+  }
+
   /// Unsigned distance: |(*this)(p)| bit for bit (NaN for a non-finite p).
   T unsigned_distance(const Vec3<T>& p) const noexcept { return std::abs(sdf_(p)); }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "ebgeom/mesh/generate.hpp"
@@ -54,6 +55,37 @@ TYPED_TEST(SignedMeshSdfTest, EverySignedModeAgreesWithPseudonormalOnWatertightM
       EXPECT_GT(compared, 1500);
     }
   }
+}
+
+TYPED_TEST(SignedMeshSdfTest, BoundedIsTheValueWithinItsBoundInEveryMode) {
+  using T = TypeParam;
+  static_assert(has_bounded_query_v<SignedMeshSdf<T>>);
+  const PolygonSoup<T> ball = make_icosphere<T>(3).value();
+  for (const PolygonSoup<T>& soup : {ball, test::remove_cap(ball, T(0.3))}) {
+    for (SignMode m : all_modes) {
+      const auto s = with_mode(soup, m);
+      int within = 0, beyond = 0;
+      for (const auto& p : test::random_points(s.bounds().grown(T(0.5)), 1500, 29)) {
+        const T v = s(p);
+        for (T bound : {T(0.02), T(0.1), T(0.3), std::abs(v)}) {
+          const T b = s.bounded(p, bound);
+          if (std::abs(v) <= bound) {
+            ++within;
+            ASSERT_TRUE(b == v && std::signbit(b) == std::signbit(v))
+                << to_string(m) << " " << p << ": " << b << " vs " << v;
+          } else {
+            ++beyond;
+            ASSERT_GT(std::abs(b), bound) << to_string(m) << " " << p;
+          }
+        }
+      }
+      EXPECT_GT(within, 1500);
+      EXPECT_GT(beyond, 1500);
+    }
+  }
+  const auto s = with_mode(ball, SignMode::fast_winding);
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(s.bounded({nan, T(0), T(0)}, T(1))));
 }
 
 TYPED_TEST(SignedMeshSdfTest, OutOfRangeSignModeIsAnErrorNotUnsigned) {
