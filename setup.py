@@ -4,7 +4,7 @@
 
 Environment: EBGEOM_NATIVE=0 builds without -march=native (for a wheel that runs on other x86-64
 machines); CMAKE_BUILD_PARALLEL_LEVEL sets the build jobs (default 2); EBGEOM_CMAKE_ARGS adds
-CMake arguments.
+CMake arguments (e.g. -DEBGEOM_WITH_OPENVDB=ON for .vdb output).
 """
 
 import os
@@ -34,6 +34,9 @@ class CMakeBuild(build_ext):
             "cmake", "-S", ROOT, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release",
             "-DEBGEOM_BUILD_PYTHON=ON", "-DEBGEOM_BUILD_TESTS=OFF", "-DEBGEOM_BUILD_CLI=OFF",
             "-DEBGEOM_BUILD_EXAMPLES=OFF", "-DEBGEOM_NATIVE=" + ("ON" if native else "OFF"),
+            # no OpenVDB unless asked (EBGEOM_CMAKE_ARGS=-DEBGEOM_WITH_OPENVDB=ON): the extension
+            # then links no system library beyond zlib
+            "-DEBGEOM_WITH_OPENVDB=OFF",
             "-DPython_EXECUTABLE=" + sys.executable, "-DEBGEOM_PYTHON_OUTPUT_DIR=" + out_dir,
         ]
         args += shlex.split(os.environ.get("EBGEOM_CMAKE_ARGS", ""))

@@ -9,9 +9,11 @@ Every `#include "ebgeom/..."` (or <ebgeom/...>) line in include/ebgeom must
     floors only point down, e.g. core/ includes nothing above core/, bvh/ never includes sdf/;
   - an umbrella header (include/ebgeom/<module>.hpp) follows its module's rule;
   - write the full path "ebgeom/<module>/<file>.hpp" (no relative includes);
-and the headers must not include each other in a cycle. The library never includes the scene
-component (scene/), whose own sources include only "ebgeom/..." headers: the library's, or its own
-(scene/include/ebgeom/scene/), never a tool's.
+and the headers must not include each other in a cycle. The library never includes a component
+(scene/, jobs/: COMPONENTS below). A component's sources, and the Python module's (python/src),
+include only "ebgeom/..." headers: the library's, their own, or those of the components below them
+(jobs/ builds on scene/, never the reverse), never a tool's; a component's tests may also include
+the shared test utilities (tests/support/).
 
 Usage: check-includes.py [REPO_ROOT]   (default: the folder above this script)
        check-includes.py --self-test    (checks that the checker catches violations)
@@ -107,9 +109,10 @@ def check(root):
                 if not target.startswith("ebgeom/"):
                     continue  # a standard or system header
                 trel = target[len("ebgeom/"):]
-                if trel.startswith("scene/"):
-                    errors.append("%s: includes %s: the header-only library may not use the scene "
-                                  "component (scene/)" % (where, target))
+                if trel.split("/")[0] in COMPONENTS:
+                    errors.append("%s: includes %s: the header-only library may not use the %s "
+                                  "component (%s/)" % (where, target, trel.split("/")[0],
+                                                       trel.split("/")[0]))
                     continue
                 if trel not in headers:
                     errors.append("%s: includes %s, which does not exist" % (where, target))
@@ -154,40 +157,66 @@ def check(root):
                 colour[nxt] = 1
                 stack.append((nxt, iter(graph[nxt])))
                 path.append(nxt)
-    return errors + check_scene(root, headers)
+    return errors + check_components(root, headers)
 
 
-SCENE_DIRS = ("scene/include", "scene/src", "scene/tests")
+# The compiled components outside the header-only library, and the code that links them: the
+# folders of each one's sources, and the components whose headers ("ebgeom/<name>/...", found in
+# <name>/include) it may include besides the library's. Keep in step with docs/architecture.md.
+COMPONENTS = {
+    "scene": (("scene/include", "scene/src", "scene/tests"), {"scene"}),
+    "jobs": (("jobs/include", "jobs/src", "jobs/tests"), {"scene", "jobs"}),
+}
+LINKERS = {
+    "python": (("python/src",), {"scene", "jobs"}),
+}
 
 
-def check_scene(root, headers):
-    """The scene component's includes: "ebgeom/..." headers of the library or of scene/include."""
+def check_components(root, headers):
+    """The includes of the components and of the Python module (COMPONENTS, LINKERS)."""
     errors = []
-    own = os.path.join(root, "scene", "include")
-    for top in SCENE_DIRS:
-        for dirpath, _, files in os.walk(os.path.join(root, top)):
-            for f in sorted(files):
-                if not f.endswith((".hpp", ".h", ".cpp")):
-                    continue
-                full = os.path.join(dirpath, f)
-                rel = os.path.relpath(full, root).replace(os.sep, "/")
-                with open(full, encoding="utf-8", errors="replace") as fh:
-                    for lineno, line in enumerate(fh, 1):
-                        m = INCLUDE_RE.match(line)
-                        if not m or m.group(1) != '"':
-                            continue
-                        target = m.group(2)
-                        where = "%s:%d" % (rel, lineno)
-                        if not target.startswith("ebgeom/"):
-                            if "/" in target or target.endswith((".hpp", ".h")):
-                                errors.append("%s: includes \"%s\"; the scene component includes "
-                                              "only \"ebgeom/...\" headers (the library's or "
-                                              "its own), never a tool's" % (where, target))
-                            continue
-                        if target[len("ebgeom/"):] not in headers and not os.path.isfile(
-                                os.path.join(own, target)):
-                            errors.append("%s: includes %s, which does not exist" %
-                                          (where, target))
+    support = os.path.join(root, "tests", "support")
+    for name, (dirs, may) in sorted(list(COMPONENTS.items()) + list(LINKERS.items())):
+        what = ("the %s component" % name) if name in COMPONENTS else ("the %s module" % name)
+        for top in dirs:
+            for dirpath, _, files in os.walk(os.path.join(root, top)):
+                for f in sorted(files):
+                    if not f.endswith((".hpp", ".h", ".cpp")):
+                        continue
+                    full = os.path.join(dirpath, f)
+                    rel = os.path.relpath(full, root).replace(os.sep, "/")
+                    is_test = top.endswith("/tests")
+                    with open(full, encoding="utf-8", errors="replace") as fh:
+                        for lineno, line in enumerate(fh, 1):
+                            m = INCLUDE_RE.match(line)
+                            if not m or m.group(1) != '"':
+                                continue
+                            target = m.group(2)
+                            where = "%s:%d" % (rel, lineno)
+                            if not target.startswith("ebgeom/"):
+                                if is_test and os.path.isfile(os.path.join(support, target)):
+                                    continue  # a shared test utility (tests/support/)
+                                if "/" in target or target.endswith((".hpp", ".h")):
+                                    errors.append("%s: includes \"%s\"; %s includes only "
+                                                  "\"ebgeom/...\" headers (the library's or a "
+                                                  "component's), never a tool's" %
+                                                  (where, target, what))
+                                continue
+                            trel = target[len("ebgeom/"):]
+                            comp = trel.split("/")[0]
+                            if comp in COMPONENTS:
+                                if comp not in may:
+                                    errors.append("%s: includes %s: %s may not use the %s "
+                                                  "component (it may use %s)" %
+                                                  (where, target, what, comp,
+                                                   ", ".join(sorted(may))))
+                                elif not os.path.isfile(os.path.join(root, comp, "include",
+                                                                     target)):
+                                    errors.append("%s: includes %s, which does not exist" %
+                                                  (where, target))
+                            elif trel not in headers:
+                                errors.append("%s: includes %s, which does not exist" %
+                                              (where, target))
     return errors
 
 
@@ -196,8 +225,8 @@ def self_test():
     def tree(files):
         d = tempfile.mkdtemp(prefix="ebgeom-includes-")
         for rel, text in files.items():
-            p = os.path.join(d, rel) if rel.startswith("scene/") else os.path.join(
-                d, "include", "ebgeom", rel)
+            p = os.path.join(d, rel) if rel.split("/")[0] in (
+                "scene", "jobs", "python", "tests") else os.path.join(d, "include", "ebgeom", rel)
             os.makedirs(os.path.dirname(p), exist_ok=True)
             with open(p, "w", encoding="utf-8") as fh:
                 fh.write(text)
@@ -217,6 +246,12 @@ def self_test():
         "ebgeom.hpp": inc % "sdf.hpp" + inc % "bvh.hpp",
         "scene/include/ebgeom/scene/scene.hpp": inc % "sdf/mesh_sdf.hpp",
         "scene/src/scene.cpp": inc % "scene/scene.hpp",
+        "jobs/include/ebgeom/jobs/npz.hpp": inc % "sdf/mesh_sdf.hpp",
+        "jobs/include/ebgeom/jobs/sdf_job.hpp": inc % "scene/scene.hpp" + inc % "jobs/npz.hpp",
+        "jobs/src/npz.cpp": inc % "jobs/npz.hpp",
+        "jobs/tests/npz_test.cpp": inc % "jobs/npz.hpp" + '#include "zip_reader.hpp"\n',
+        "tests/support/zip_reader.hpp": "#pragma once\n",
+        "python/src/module.cpp": inc % "jobs/sdf_job.hpp" + inc % "scene/scene.hpp",
     }
     bad = {
         "upward include from core": {"core/vec.hpp": inc % "sdf/mesh_sdf.hpp"},
@@ -238,6 +273,15 @@ def self_test():
         "library including the scene component": {"sdf/mesh_sdf.hpp": inc % "scene/scene.hpp"},
         "scene component including a tool header": {"scene/src/scene.cpp": '#include "common.hpp"\n'},
         "scene component including a missing header": {"scene/src/scene.cpp": inc % "scene/gone.hpp"},
+        "library including the jobs component": {"sdf/mesh_sdf.hpp": inc % "jobs/npz.hpp"},
+        "scene component including the jobs component": {
+            "scene/src/scene.cpp": inc % "scene/scene.hpp" + inc % "jobs/npz.hpp"},
+        "jobs component including a tool header": {"jobs/src/npz.cpp": '#include "common.hpp"\n'},
+        "jobs component including a missing header": {"jobs/src/npz.cpp": inc % "jobs/gone.hpp"},
+        "jobs test including a missing test utility": {
+            "jobs/tests/npz_test.cpp": '#include "gone_reader.hpp"\n'},
+        "Python module including a tool header": {
+            "python/src/module.cpp": '#include "sdf_job.hpp"\n'},
     }
     failures = []
     d = tree(clean)

@@ -3,9 +3,10 @@
 // The `ebgeom._ebgeom` extension: meshes, mesh SDFs, compiled scenes and grids over NumPy arrays.
 // The pure-Python package `ebgeom` (python/ebgeom) wraps it; see docs/python.md.
 //
-// The scene compiler, the grid rules and the mesh SDF are the command-line tool's own (the
-// scene component ebgeom/scene/, and tools/ebgeom/sdf_job.hpp), so a grid sampled here is the CLI's
-// grid bit for bit.
+// The scene compiler, the grid rules, the mesh SDF and the .npz/.vdb writers are the command-line
+// tool's own (the scene component ebgeom/scene/ and the jobs component ebgeom/jobs/), so a grid
+// sampled here is the CLI's grid bit for bit, and a file written here is the CLI's file byte for
+// byte.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -32,14 +33,15 @@
 #include "ebgeom/mesh/validate.hpp"
 #include "ebgeom/version.hpp"
 
-#include "common.hpp"
+#include "ebgeom/jobs/mesh_report.hpp"
+#include "ebgeom/jobs/npz.hpp"
+#include "ebgeom/jobs/sdf_job.hpp"
+#include "ebgeom/jobs/vdb_output.hpp"
+#include "ebgeom/scene/error.hpp"
 #include "ebgeom/scene/gltf.hpp"
 #include "ebgeom/scene/mesh_input.hpp"
 #include "ebgeom/scene/scene.hpp"
-#include "mesh_report.hpp"
-#include "npz.hpp"
-#include "sdf_job.hpp"
-#include "vdb/vdb_output.hpp"
+#include "ebgeom/scene/system.hpp"
 
 namespace py = pybind11;
 using namespace ebgeom;
@@ -120,7 +122,7 @@ struct Mesh {
   std::string path; // empty when built from arrays
 
   PolygonSoup<float> soup_float() const {
-    if (!path.empty() && !cli::is_gltf_path(path)) {
+    if (!path.empty() && !scene::is_gltf_path(path)) {
       auto s = io::read_mesh<float>(path);
       if (s) return std::move(*s);
     }
@@ -148,19 +150,19 @@ std::shared_ptr<Mesh> read_mesh_py(const std::string& path) {
            py::error_already_set()));
   }
   std::optional<Result<PolygonSoup<double>, ebgeom::ParseError>> r;
-  if (cli::is_gltf_path(path)) { // glTF 2.0 through tinygltf, as the CLI reads it
+  if (scene::is_gltf_path(path)) { // glTF 2.0 through tinygltf, as the CLI reads it
     std::string failed;
     {
       py::gil_scoped_release nogil;
       try {
-        r.emplace(cli::read_gltf(path));
-      } catch (const cli::CliError& e) {
+        r.emplace(scene::read_gltf(path));
+      } catch (const scene::ToolError& e) {
         failed = e.what();
       }
     }
     if (!failed.empty()) {
       ebgeom::ParseError e;
-      e.code = cli::gltf_available() ? ErrorCode::syntax : ErrorCode::unsupported;
+      e.code = scene::gltf_available() ? ErrorCode::syntax : ErrorCode::unsupported;
       e.path = path;
       throw ParseFailure{e, failed};
     }
@@ -243,7 +245,7 @@ py::dict mesh_info(const Mesh& m) {
   // The fields of `ebgeom info --json`, built by the same function.
   nlohmann::json j;
   if (!m.path.empty()) j["input"] = m.path;
-  j.update(cli::mesh_report_json(r, m.soup.triangle_count()));
+  j.update(jobs::mesh_report_json(r, m.soup.triangle_count()));
   return py::module_::import("json").attr("loads")(j.dump()).cast<py::dict>();
 }
 
@@ -295,8 +297,8 @@ template <class T> void build_mesh_impl(Sdf& s, const Mesh& m, SignMode mode) {
 
 SignMode parse_sign(const std::string& sign) {
   try {
-    return cli::parse_sign_mode(sign, cli::exit_usage, "sign");
-  } catch (const cli::CliError& e) {
+    return scene::parse_sign_mode(sign, scene::exit_usage, "sign");
+  } catch (const scene::ToolError& e) {
     throw py::value_error(e.what());
   }
 }
@@ -328,20 +330,20 @@ Sdf make_scene(const std::string& json_text, const std::string& file, const std:
   s.label = file;
   py::gil_scoped_release nogil;
   try {
-    const cli::Json doc =
-        from_file ? cli::read_json_file(file) : cli::Json::parse(json_text, nullptr, true, true);
+    const scene::Json doc = from_file ? scene::read_json_file(file)
+                                      : scene::Json::parse(json_text, nullptr, true, true);
     if (dbl) {
       s.d = std::make_shared<SdfImpl<double>>();
-      s.d->prog = cli::compile_scene<double>(doc, file);
+      s.d->prog = scene::compile_scene<double>(doc, file);
     } else {
       s.f = std::make_shared<SdfImpl<float>>();
-      s.f->prog = cli::compile_scene<float>(doc, file);
+      s.f->prog = scene::compile_scene<float>(doc, file);
     }
-  } catch (const cli::Json::exception& e) {
+  } catch (const scene::Json::exception& e) {
     py::gil_scoped_acquire gil;
     PyErr_SetString(g_scene_error, (file + ": invalid JSON: " + e.what()).c_str());
     throw py::error_already_set();
-  } catch (const cli::CliError& e) {
+  } catch (const scene::ToolError& e) {
     py::gil_scoped_acquire gil;
     PyErr_SetString(g_scene_error, e.what());
     throw py::error_already_set();
@@ -435,8 +437,8 @@ py::dict sign_info(const Sdf& s) {
       r["reason"] = "a scene (each mesh in it has its own sign mode)";
       return;
     }
-    r["requested"] = cli::sign_name(impl.prog.requested_sign());
-    r["mode"] = cli::sign_name(impl.mesh->resolved_mode());
+    r["requested"] = scene::sign_name(impl.prog.requested_sign());
+    r["mode"] = scene::sign_name(impl.mesh->resolved_mode());
     r["reason"] = impl.mesh->reason();
   };
   if (s.is_double())
@@ -495,7 +497,7 @@ GridArgs grid_args(const std::vector<double>& box, const std::vector<std::size_t
 
 /// The grid the CLI's options would sample (`make_spec`), its messages in Python's words.
 template <class T> GridSpec<T> spec_of(const Sdf& s, const GridArgs& a) {
-  cli::SdfOptions o;
+  jobs::SdfOptions o;
   o.input = s.label.empty() ? std::string("the SDF") : s.label;
   o.box = a.box;
   o.res = a.res;
@@ -504,8 +506,8 @@ template <class T> GridSpec<T> spec_of(const Sdf& s, const GridArgs& a) {
   o.band = a.band;
   o.nodes = a.nodes;
   try {
-    return cli::make_spec<T>(o, s.impl<T>().prog.bounds());
-  } catch (const cli::CliError& e) {
+    return jobs::make_spec<T>(o, s.impl<T>().prog.bounds());
+  } catch (const scene::ToolError& e) {
     std::string w = e.what();
     for (auto [from, to] : {std::pair<std::string, std::string>{"--box", "box"},
                             {"--dx", "dx"},
@@ -531,10 +533,10 @@ std::uint64_t bytes_of(std::uint64_t count, std::uint64_t each) {
 
 /// Raises MemoryError when `bytes` exceed the memory available (when it is known).
 void require_memory(std::uint64_t bytes, const std::string& what, const std::string& hint) {
-  const std::uint64_t avail = cli::available_memory_bytes();
+  const std::uint64_t avail = scene::available_memory_bytes();
   if (avail != 0 && bytes > avail) {
-    PyErr_SetString(PyExc_MemoryError, (what + " needs " + cli::human_bytes(bytes) + " but " +
-                                        cli::human_bytes(avail) + " are available; " + hint)
+    PyErr_SetString(PyExc_MemoryError, (what + " needs " + scene::human_bytes(bytes) + " but " +
+                                        scene::human_bytes(avail) + " are available; " + hint)
                                            .c_str());
     throw py::error_already_set();
   }
@@ -653,7 +655,8 @@ template <class T> py::dict sample_sparse_as(const Sdf& s, const GridArgs& a) {
       py::gil_scoped_acquire gil;
       PyErr_SetString(PyExc_MemoryError,
                       ("the tiles of the narrow band of " + grid_name(spec) +
-                       " do not fit in memory (" + cli::human_bytes(cli::available_memory_bytes()) +
+                       " do not fit in memory (" +
+                       scene::human_bytes(scene::available_memory_bytes()) +
                        " available); lower res, narrow the band or shrink the box")
                           .c_str());
       throw py::error_already_set();
@@ -710,12 +713,12 @@ template <class T> py::array to_dense_as(const SparseGrid<T>& g) {
 
 /// Writes a sparse grid as `ebgeom sdf -o OUT.npz --band W` (or OUT.vdb) does.
 void save_sparse_py(const Sparse& s, const std::string& path) {
-  const bool vdb = cli::is_vdb_path(path);
-  if (!cli::is_npz_path(path) && !vdb)
+  const bool vdb = jobs::is_vdb_path(path);
+  if (!jobs::is_npz_path(path) && !vdb)
     throw py::value_error(path + ": a sparse grid is saved as .npz (the narrow band's tiles) or "
                                  ".vdb (an OpenVDB level set); for .vti, .npy or .raw save "
                                  "to_dense()");
-  if (vdb && !cli::vdb_available())
+  if (vdb && !jobs::vdb_available())
     throw py::value_error(
         path + ": this ebgeom package was built without OpenVDB; install it (Debian: "
                "libopenvdb-dev libboost-iostreams-dev) and reinstall with "
@@ -725,7 +728,7 @@ void save_sparse_py(const Sparse& s, const std::string& path) {
   {
     py::gil_scoped_release nogil;
     ok = s.visit([&](const auto& g) {
-      return vdb ? cli::write_vdb(path, g) : cli::write_sparse_npz(path, g);
+      return vdb ? jobs::write_vdb(path, g) : jobs::write_sparse_npz(path, g);
     });
   }
   if (!ok) {
@@ -749,8 +752,8 @@ void save_grid_as(const std::string& path, const CArr<T>& v, const std::vector<d
   {
     py::gil_scoped_release nogil;
     const Span<const T> values(v.data(), spec.size());
-    if (cli::is_npz_path(path)) {
-      auto written = cli::write_dense_npz(path, spec, values);
+    if (jobs::is_npz_path(path)) {
+      auto written = jobs::write_dense_npz(path, spec, values);
       if (!written) ok = written.error();
     } else {
       ok = write_grid(path, spec, values, w);
@@ -788,10 +791,10 @@ template <class T> double time_eval_as(const Sdf& s, const py::handle& points, i
   const ExecOptions ex = exec_of(threads);
   const SdfImpl<T>& impl = s.impl<T>();
   py::gil_scoped_release nogil;
-  const double t0 = cli::now_s();
+  const double t0 = scene::now_s();
   auto ok = impl.mesh ? evaluate(*impl.mesh, point_span<T>(pts), Span<T>(out), ex)
                       : evaluate(impl.prog, point_span<T>(pts), Span<T>(out), ex);
-  const double t1 = cli::now_s();
+  const double t1 = scene::now_s();
   (void)ok;
   return t1 - t0;
 }
@@ -817,7 +820,7 @@ PYBIND11_MODULE(_ebgeom, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
-    } catch (const cli::CliError& e) {
+    } catch (const scene::ToolError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
@@ -1002,9 +1005,9 @@ PYBIND11_MODULE(_ebgeom, m) {
         py::arg("dx"), py::arg("pad"), py::arg("band"), py::arg("nodes"), py::arg("threads"));
   m.def("grid_size", &grid_size_py, py::arg("sdf"), py::arg("box"), py::arg("res"), py::arg("dx"),
         py::arg("pad"), py::arg("nodes"));
-  m.def("available_memory", &cli::available_memory_bytes,
+  m.def("available_memory", &scene::available_memory_bytes,
         "Bytes of memory available to this process (0 when unknown), as the CLI reads it.");
-  m.def("vdb_available", &cli::vdb_available, "True when this build writes OpenVDB files.");
+  m.def("vdb_available", &jobs::vdb_available, "True when this build writes OpenVDB files.");
   m.def("save_grid", &save_grid_py, py::arg("path"), py::arg("values"), py::arg("box"),
         py::arg("centering"));
   (void)value_error;

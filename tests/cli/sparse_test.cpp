@@ -2,8 +2,8 @@
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `ebgeom sdf ... -o OUT.npz --band W`: the sparse narrow-band output, read back with the tests'
 // own ZIP and .npy readers (zip_reader.hpp, CRCs recomputed with zlib), against the dense .npy of
-// the same command sample for sample; a grid too large for a dense array; error paths; and the
-// archive writer itself (ZIP64 records).
+// the same command sample for sample; a grid too large for a dense array; error paths. The archive
+// writer itself is tested in jobs/tests/npz_test.cpp.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -12,7 +12,6 @@
 #include <fstream>
 
 #include "cli_support.hpp"
-#include "npz.hpp"
 #include "zip_reader.hpp"
 
 using namespace ebgeom;
@@ -295,38 +294,4 @@ TEST(SparseNpz, Errors) {
   EXPECT_EQ(r.code, 5) << r.err;
   EXPECT_NE(r.err.find("implicit SDF (it keeps every tile)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("\"sign\": \"pseudonormal\""), std::string::npos) << r.err;
-}
-
-TEST(NpzWriter, Zip64RecordsAreReadBack) {
-  const std::string dir = test_dir();
-  const std::vector<float> a = {1.5f, -2.f, 3.25f, 0.f, 7.f, -9.5f};
-  const std::vector<std::int32_t> b = {-1, 0, 5};
-  const std::vector<cli::NpzMember> members = {
-      {"a", npy_header("<f4", {2, 3}), a.data(), a.size() * 4},
-      {"b", npy_header("<i4", {3}), b.data(), b.size() * 4},
-      {"empty", npy_header("<f8", {0}), nullptr, 0},
-  };
-  for (cli::Zip64 mode : {cli::Zip64::as_needed, cli::Zip64::always}) {
-    const std::string path = dir + "/t.npz";
-    cli::NpzOptions opt;
-    opt.zip64 = mode;
-    auto ok = cli::write_npz(path, members, opt);
-    ASSERT_TRUE(ok) << ok.error().what();
-    const std::string bytes = slurp(path);
-    EXPECT_EQ(*ok, bytes.size());
-    const Zip z = read_zip(bytes);
-    ASSERT_TRUE(z.ok);
-    EXPECT_EQ(z.order, (std::vector<std::string>{"a.npy", "b.npy", "empty.npy"}));
-    EXPECT_EQ(z.zip64_end, mode == cli::Zip64::always);
-    for (const auto& [name, e] : z.entries) EXPECT_EQ(e.zip64, mode == cli::Zip64::always) << name;
-    const NpyArray pa = parse_npy(z.entries.at("a.npy").data, "a");
-    EXPECT_EQ(pa.shape, (std::vector<std::size_t>{2, 3}));
-    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(pa.at<float>(i), a[i]);
-    const NpyArray pb = parse_npy(z.entries.at("b.npy").data, "b");
-    for (std::size_t i = 0; i < b.size(); ++i) EXPECT_EQ(pb.at<std::int32_t>(i), b[i]);
-    EXPECT_TRUE(parse_npy(z.entries.at("empty.npy").data, "empty").data.empty());
-  }
-  auto bad = cli::write_npz(dir + "/missing/t.npz", members);
-  ASSERT_FALSE(bad);
-  EXPECT_EQ(bad.error().code, ErrorCode::io);
 }

@@ -84,7 +84,7 @@ void write_collective(const std::string& path, const std::string& header, const 
       MPI_File_open(comm, tmp.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &fh);
   Status st;
   if (orc != MPI_SUCCESS)
-    st = {cli::exit_output, path + ": cannot open for writing (" + error_string(orc) + ")"};
+    st = {scene::exit_output, path + ": cannot open for writing (" + error_string(orc) + ")"};
   st = agree(st, comm);
   if (!st) {
     if (fh != MPI_FILE_NULL) MPI_File_close(&fh);
@@ -111,7 +111,7 @@ void write_collective(const std::string& path, const std::string& header, const 
   const bool empty = mine.size() == 0;
   const std::size_t rows = empty ? 0 : d[1] * d[2];
   if (rows > std::size_t(INT32_MAX)) {
-    st = {cli::exit_resource, path + ": a rank's part has over 2^31 rows; use more ranks"};
+    st = {scene::exit_resource, path + ": a rank's part has over 2^31 rows; use more ranks"};
     rc = MPI_SUCCESS;
   }
   if (!empty) {
@@ -144,24 +144,24 @@ void write_collective(const std::string& path, const std::string& header, const 
     MPI_Type_free(&row);
   }
   if (st && rc != MPI_SUCCESS)
-    st = {cli::exit_output, path + ": write failed (" + error_string(rc) + ")"};
+    st = {scene::exit_output, path + ": write failed (" + error_string(rc) + ")"};
   if (st && short_by > 0)
-    st = {cli::exit_output, path + ": write failed: " + std::to_string(short_by) +
-                                " values or bytes were not written (disk full?)"};
+    st = {scene::exit_output, path + ": write failed: " + std::to_string(short_by) +
+                                  " values or bytes were not written (disk full?)"};
   if (st && rank == 0) { // every byte must have arrived: the size, and no hole where data belongs
     struct stat fs;
     if (::stat(tmp.c_str(), &fs) != 0)
-      st = {cli::exit_output,
+      st = {scene::exit_output,
             path + ": the written file vanished (" + std::string(std::strerror(errno)) + ")"};
     else if (MPI_Offset(fs.st_size) != total)
-      st = {cli::exit_output, path + ": write failed: the file holds " +
-                                  std::to_string(fs.st_size) + " of its " + std::to_string(total) +
-                                  " bytes (disk full?)"};
+      st = {scene::exit_output, path + ": write failed: the file holds " +
+                                    std::to_string(fs.st_size) + " of its " +
+                                    std::to_string(total) + " bytes (disk full?)"};
   }
   st = agree(st, comm);
   if (st && rank == 0 && std::rename(tmp.c_str(), path.c_str()) != 0)
-    st = {cli::exit_output, path + ": cannot rename the temporary file onto it (" +
-                                std::string(std::strerror(errno)) + ")"};
+    st = {scene::exit_output, path + ": cannot rename the temporary file onto it (" +
+                                  std::string(std::strerror(errno)) + ")"};
   st = agree(st, comm);
   if (!st) {
     if (rank == 0) MPI_File_delete(tmp.c_str(), MPI_INFO_NULL);

@@ -25,18 +25,17 @@
 #include <thread>
 #include <vector>
 
-#include "common.hpp"
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/eval/decompose.hpp"
 #include "ebgeom/eval/grid.hpp"
+#include "ebgeom/jobs/sdf_job.hpp"
 #include "grid_output.hpp"
 #include "mpi_support.hpp"
-#include "sdf_job.hpp"
 
 namespace ebgeom::mpi {
 
-using cli::fail;
-using cli::SdfOptions;
+using jobs::SdfOptions;
+using scene::fail;
 using Json = nlohmann::json;
 
 struct World {
@@ -50,12 +49,12 @@ OutputKind output_kind(const std::string& path) {
   if (ext == ".npy") return OutputKind::npy;
   if (ext == ".raw") return OutputKind::raw;
   if (ext == ".vti")
-    fail(cli::exit_usage, path + ": ebgeom-mpi writes a parallel VTK file; name it .pvti (one "
-                                 ".vti piece per rank is written beside it)");
+    fail(scene::exit_usage, path + ": ebgeom-mpi writes a parallel VTK file; name it .pvti (one "
+                                   ".vti piece per rank is written beside it)");
   if (ext == ".npz")
-    fail(cli::exit_usage, path + ": the sparse .npz output is written by the serial ebgeom sdf "
-                                 "only; ebgeom-mpi writes .pvti, .npy or .raw");
-  fail(cli::exit_usage, path + ": unknown output format (expected .pvti, .npy or .raw)");
+    fail(scene::exit_usage, path + ": the sparse .npz output is written by the serial ebgeom sdf "
+                                   "only; ebgeom-mpi writes .pvti, .npy or .raw");
+  fail(scene::exit_usage, path + ": unknown output format (expected .pvti, .npy or .raw)");
 }
 
 /// Fails (output) unless a file can be created beside `path`, before hours of sampling.
@@ -64,7 +63,7 @@ void require_writable(const std::string& path) {
   {
     std::ofstream f(probe, std::ios::binary | std::ios::trunc);
     if (!f)
-      fail(cli::exit_output,
+      fail(scene::exit_output,
            path + ": cannot open for writing (" + std::string(std::strerror(errno)) + ")");
   }
   std::remove(probe.c_str());
@@ -72,26 +71,27 @@ void require_writable(const std::string& path) {
 
 template <class T> int run(const SdfOptions& o, const World& w) {
   const bool root = w.rank == 0;
-  const double t0 = cli::now_s();
+  const double t0 = scene::now_s();
   OutputKind kind = OutputKind::npy;
-  cli::SdfInput<T> in;
+  jobs::SdfInput<T> in;
   GridSpec<T> spec;
   // 1. Options, input (read by every rank), grid, and a writable output.
   phase(w.comm, [&] {
     if (!o.png.empty())
-      fail(cli::exit_usage, "--png is not supported by ebgeom-mpi (no rank holds the whole grid); "
-                            "slice the output, or run ebgeom sdf --png on a coarser grid");
+      fail(scene::exit_usage,
+           "--png is not supported by ebgeom-mpi (no rank holds the whole grid); "
+           "slice the output, or run ebgeom sdf --png on a coarser grid");
     kind = output_kind(o.output);
-    const SignMode sign = cli::parse_sign_mode(o.sign, cli::exit_usage, "--sign");
-    cli::require_input_file(o.input);
+    const SignMode sign = scene::parse_sign_mode(o.sign, scene::exit_usage, "--sign");
+    scene::require_input_file(o.input);
     std::error_code ec;
     if (std::filesystem::exists(o.output) && std::filesystem::equivalent(o.output, o.input, ec))
-      fail(cli::exit_usage, o.output + ": writing it would overwrite the input " + o.input);
-    in = cli::load_sdf_input<T>(o, sign);
-    spec = cli::make_spec(o, in.prog.bounds());
+      fail(scene::exit_usage, o.output + ": writing it would overwrite the input " + o.input);
+    in = jobs::load_sdf_input<T>(o, sign);
+    spec = jobs::make_spec(o, in.prog.bounds());
     if (root) require_writable(o.output);
   });
-  const double t1 = cli::now_s();
+  const double t1 = scene::now_s();
 
   // 2. Bricks and their estimated work (narrow band: one SDF value per brick centre, the bricks
   //    shared out evenly between ranks), then one box of bricks per rank.
@@ -137,24 +137,24 @@ template <class T> int run(const SdfOptions& o, const World& w) {
   const GridRange owned = dec.parts[std::size_t(w.rank)].range;
   const GridRange evaluated =
       kind == OutputKind::pvti && owned.size() ? piece_range(owned, spec.dims) : owned;
-  const double t2 = cli::now_s();
+  const double t2 = scene::now_s();
 
   // 3. Sample this rank's box.
   std::vector<T> values;
   double eval_s = 0;
   phase(w.comm, [&] {
-    cli::require_memory(std::uint64_t(evaluated.size()) * sizeof(T),
-                        "this rank's part of the grid");
+    scene::require_memory(std::uint64_t(evaluated.size()) * sizeof(T),
+                          "this rank's part of the grid");
     values.resize(evaluated.size());
-    const double s0 = cli::now_s();
+    const double s0 = scene::now_s();
     if (evaluated.size()) {
       // A mesh file is sampled through the mesh SDF itself (tile and band searches).
       auto ok = in.prog.visit([&](const auto& sdf) {
         return sample_grid_box(sdf, spec, evaluated, Span<T>(values), gopt);
       });
-      if (!ok) fail(cli::exit_failure, ok.error().what());
+      if (!ok) fail(scene::exit_failure, ok.error().what());
     }
-    eval_s = cli::now_s() - s0;
+    eval_s = scene::now_s() - s0;
   });
   // A grid with NaN or infinite samples (values the working precision cannot carry) is never
   // written, as in the serial tool: every rank counts its owned samples and all refuse together.
@@ -165,9 +165,9 @@ template <class T> int run(const SdfOptions& o, const World& w) {
         for (std::size_t i = owned.lo[0]; i < owned.hi[0]; ++i)
           bad += !std::isfinite(values[evaluated.index(i, j, k)]);
     MPI_Allreduce(&bad, &total, 1, MPI_UINT64_T, MPI_SUM, w.comm);
-    phase(w.comm, [&] { cli::require_finite_grid(total, spec.size(), o.input); });
+    phase(w.comm, [&] { jobs::require_finite_grid(total, spec.size(), o.input); });
   }
-  const double t3 = cli::now_s();
+  const double t3 = scene::now_s();
 
   // 4. Write.
   WriteGridOptions wopt;
@@ -178,12 +178,12 @@ template <class T> int run(const SdfOptions& o, const World& w) {
     Status st = guarded([&] {
       if (evaluated.size() == 0) return;
       auto ok = write_vti_piece(piece, spec, evaluated, evaluated, v, wopt);
-      if (!ok) fail(cli::exit_output, ok.error().what());
+      if (!ok) fail(scene::exit_output, ok.error().what());
     });
     st = agree(st, w.comm);
     if (st && root) {
       auto ok = write_pvti(o.output, spec, pvti_pieces(o.output, dec, spec.dims), wopt);
-      if (!ok) st = {cli::exit_output, ok.error().what()};
+      if (!ok) st = {scene::exit_output, ok.error().what()};
     }
     st = agree(st, w.comm);
     if (!st) {
@@ -206,12 +206,12 @@ template <class T> int run(const SdfOptions& o, const World& w) {
         detail::AtomicFile f(side);
         const std::string js = raw_sidecar_json(spec, base, wopt);
         if (!f.is_open()) {
-          st = {cli::exit_output, f.open_error().what()};
+          st = {scene::exit_output, f.open_error().what()};
         } else {
           f.stream().write(js.data(), std::streamsize(js.size()));
           auto ok = f.close();
           if (ok) ok = f.commit();
-          if (!ok) st = {cli::exit_output, ok.error().what()};
+          if (!ok) st = {scene::exit_output, ok.error().what()};
         }
       }
       st = agree(st, w.comm);
@@ -220,14 +220,14 @@ template <class T> int run(const SdfOptions& o, const World& w) {
     write_collective(o.output, header, spec, owned, v, w.comm);
     Status st;
     if (sidecar)
-      if (auto ok = sidecar->commit(); !ok) st = {cli::exit_output, ok.error().what()};
+      if (auto ok = sidecar->commit(); !ok) st = {scene::exit_output, ok.error().what()};
     st = agree(st, w.comm);
     if (!st) {
       if (root) std::remove(o.output.c_str()); // no data without its sidecar
       throw Abort{st};
     }
   }
-  const double t4 = cli::now_s();
+  const double t4 = scene::now_s();
 
   // 5. Statistics over the owned samples, and the balance actually achieved.
   double mn = std::numeric_limits<double>::infinity(), mx = -mn, inside = 0;
@@ -245,7 +245,7 @@ template <class T> int run(const SdfOptions& o, const World& w) {
   MPI_Reduce(&inside, &ginside, 1, MPI_DOUBLE, MPI_SUM, 0, w.comm);
   const std::vector<double> evals = allgather(eval_s, w.comm);
   const std::vector<double> loads = allgather(in.parse_s + in.build_s, w.comm);
-  if (!root || (o.quiet && !o.json)) return cli::exit_ok;
+  if (!root || (o.quiet && !o.json)) return scene::exit_ok;
 
   double emax = 0, esum = 0;
   for (double e : evals) {
@@ -263,7 +263,7 @@ template <class T> int run(const SdfOptions& o, const World& w) {
   const double load_max = *std::max_element(loads.begin(), loads.end());
   const double inside_fraction = ginside / double(spec.size());
   if (o.json) {
-    Json j = cli::grid_job_json(o, in, spec, gopt.band);
+    Json j = jobs::grid_job_json(o, in, spec, gopt.band);
     j["timings"] = {{"load_s", load_max},
                     {"decompose_s", t2 - t1},
                     {"eval_s", emax},
@@ -303,7 +303,7 @@ template <class T> int run(const SdfOptions& o, const World& w) {
     std::printf("  time      load %.3f s  decompose %.3f s  eval %.3f s  write %.3f s\n", load_max,
                 t2 - t1, emax, t4 - t3);
   }
-  return cli::exit_ok;
+  return scene::exit_ok;
 }
 
 } // namespace ebgeom::mpi
@@ -325,10 +325,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("ebgeom-mpi ") + EBGEOM_VERSION_STRING);
   app.footer("Exit status: 0 success, 1 internal error, 2 usage, 3 input, 4 output, 5 memory "
              "(the same on every rank).");
-  auto o = std::make_shared<cli::SdfOptions>();
+  auto o = std::make_shared<jobs::SdfOptions>();
   CLI::App* sub = app.add_subcommand(
       "sdf", "Sample the signed distance of a mesh or scene on a grid split over the ranks");
-  cli::add_sdf_options(sub, o);
+  jobs::add_sdf_options(sub, o);
   sub->get_option("--output")
       ->description("output: OUT.pvti (one OUT_<rank>.vti piece per rank beside it), .npy or .raw "
                     "(one file written with MPI-IO)");
@@ -337,7 +337,7 @@ int main(int argc, char** argv) {
               "Examples:\n"
               "  mpirun -n 4 ebgeom-mpi sdf bunny.obj -o bunny.pvti --res 512 --band 3\n"
               "  srun ebgeom-mpi sdf part.stl -o part.npy --dx 0.001 --band 4 --json");
-  int code = cli::exit_ok;
+  int code = scene::exit_ok;
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) { // --help, --version
@@ -350,7 +350,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "Run 'ebgeom-mpi sdf --help' for usage.\n");
     }
     MPI_Finalize();
-    return cli::exit_usage;
+    return scene::exit_usage;
   }
   try {
     code = o->precision == "double" ? mpi::run<double>(*o, w) : mpi::run<float>(*o, w);
@@ -360,7 +360,7 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     // Outside every agreed phase: the other ranks may be waiting in a collective.
     std::fprintf(stderr, "ebgeom-mpi: error (rank %d): %s\n", w.rank, e.what());
-    MPI_Abort(w.comm, cli::exit_failure);
+    MPI_Abort(w.comm, scene::exit_failure);
   }
   MPI_Finalize();
   return code;

@@ -11,12 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "common.hpp"
 #include "ebgeom/core/error.hpp"
+#include "ebgeom/scene/error.hpp"
+#include "ebgeom/scene/system.hpp"
 
 namespace ebgeom::mpi {
 
-/// Outcome of one rank's phase: 0 or an `ebgeom::cli::Exit` code, with its message.
+/// Outcome of one rank's phase: 0 or an `ebgeom::scene::Exit` code, with its message.
 struct Status {
   int code = 0;
   std::string message;
@@ -33,14 +34,14 @@ template <class F> Status guarded(F&& f) {
   try {
     f();
     return {};
-  } catch (const cli::CliError& e) {
+  } catch (const scene::ToolError& e) {
     return {e.code, e.what()};
   } catch (const ebgeom::Exception& e) {
-    return {cli::exit_failure, e.what()};
+    return {scene::exit_failure, e.what()};
   } catch (const std::bad_alloc&) {
-    return {cli::exit_resource, "out of memory"};
+    return {scene::exit_resource, "out of memory"};
   } catch (const std::exception& e) {
-    return {cli::exit_failure, e.what()};
+    return {scene::exit_failure, e.what()};
   }
 }
 

@@ -8,9 +8,9 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "demo_scene.hpp"
+#include "ebgeom/jobs/number_options.hpp"
 #include "ebgeom/scene/scene.hpp"
 #include "grid_job.hpp"
-#include "number_options.hpp"
 
 namespace ebgeom::cli {
 

@@ -8,10 +8,10 @@
 #include <string>
 
 #include "common.hpp"
+#include "ebgeom/jobs/mesh_report.hpp"
 #include "ebgeom/mesh/validate.hpp"
 #include "ebgeom/scene/mesh_input.hpp"
 #include "ebgeom/scene/scene.hpp"
-#include "mesh_report.hpp"
 
 namespace ebgeom::cli {
 

@@ -12,10 +12,10 @@
 #include "common.hpp"
 #include "ebgeom/eval/evaluate.hpp"
 #include "ebgeom/eval/write_grid.hpp"
+#include "ebgeom/jobs/number_options.hpp"
 #include "ebgeom/scene/scene.hpp"
 #include "grid_job.hpp"
 #include "npy.hpp"
-#include "number_options.hpp"
 #include "progress.hpp"
 
 namespace ebgeom::cli {

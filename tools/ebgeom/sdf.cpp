@@ -10,11 +10,11 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "ebgeom/jobs/npz.hpp"
+#include "ebgeom/jobs/sdf_job.hpp"
+#include "ebgeom/jobs/vdb_output.hpp"
 #include "ebgeom/scene/scene.hpp"
 #include "grid_job.hpp"
-#include "npz.hpp"
-#include "sdf_job.hpp"
-#include "vdb/vdb_output.hpp"
 
 namespace ebgeom::cli {
 

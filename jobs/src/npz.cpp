@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-#include "npz.hpp"
+#include "ebgeom/jobs/npz.hpp"
 
 #include <zlib.h>
 
 #include <algorithm>
 #include <limits>
 
-namespace ebgeom::cli {
+namespace ebgeom::jobs {
 
 namespace {
 
@@ -144,4 +144,4 @@ Result<std::uint64_t> write_npz(const std::string& path, const std::vector<NpzMe
   return at;
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::jobs

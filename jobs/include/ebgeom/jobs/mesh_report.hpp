@@ -10,7 +10,7 @@
 #include "ebgeom/mesh/validate.hpp"
 #include "ebgeom/scene/mesh_input.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::jobs {
 
 /// `r` as JSON (no "input": the caller adds it when there is a file); `triangles` is the mesh's
 /// triangle count after fan triangulation.
@@ -44,8 +44,8 @@ inline nlohmann::json mesh_report_json(const ValidationReport<double>& r, std::s
   j["sdf_well_defined"] = r.sdf_well_defined;
   j["verdict"] = r.verdict;
   const SignChoice auto_sign = choose_sign_mode(r);
-  j["auto_sign"] = {{"mode", sign_name(auto_sign.mode)}, {"reason", auto_sign.reason}};
+  j["auto_sign"] = {{"mode", scene::sign_name(auto_sign.mode)}, {"reason", auto_sign.reason}};
   return j;
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::jobs

@@ -10,7 +10,7 @@
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/eval/sparse_grid.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::jobs {
 
 /// True when this build writes OpenVDB files.
 bool vdb_available();
@@ -31,4 +31,4 @@ inline bool is_vdb_path(const std::string& path) {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".vdb") == 0;
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::jobs

@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <string>
 
-namespace ebgeom::cli {
+namespace ebgeom::jobs {
 
 /// The rule a numeric option's value must satisfy.
 enum class NumberRule { positive, non_negative, percent_range };
@@ -41,4 +41,4 @@ inline CLI::Validator number_rule(NumberRule rule, bool integer = false) {
       std::string(integer ? "INT " : "NUMBER ") + words);
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::jobs

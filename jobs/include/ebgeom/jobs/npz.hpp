@@ -13,7 +13,7 @@
 #include "ebgeom/eval/sparse_grid.hpp"
 #include "ebgeom/eval/write_grid.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::jobs {
 
 /// One member of an `.npz`: stored as `name + ".npy"`, the bytes `header` (an `npy_header`) then
 /// `bytes` bytes at `data` (not owned; must outlive the write).
@@ -140,4 +140,4 @@ inline bool is_npz_path(const std::string& path) {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".npz") == 0;
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::jobs

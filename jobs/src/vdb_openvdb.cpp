@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `write_vdb` with OpenVDB: ebgeom's 8^3 tiles are exactly OpenVDB's leaf nodes (LeafNode<T, 3>),
 // so each kept tile is copied into one leaf.
-#include "vdb_output.hpp"
+#include "ebgeom/jobs/vdb_output.hpp"
 
 #include <openvdb/io/Stream.h>
 #include <openvdb/math/Maps.h>
@@ -16,7 +16,7 @@
 
 #include "ebgeom/eval/write_grid.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::jobs {
 
 namespace {
 
@@ -123,4 +123,4 @@ Result<std::uint64_t> write_vdb(const std::string& path, const SparseGrid<double
   return write_vdb_as(path, g);
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::jobs

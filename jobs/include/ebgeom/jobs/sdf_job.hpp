@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 #pragma once
-// The pieces of `ebgeom sdf` that `ebgeom-mpi sdf` shares: the options, the grid they describe,
-// and loading the input (mesh or scene) into a `SceneSdf<T>`. Both tools parse the same command
-// line into the same grid, so their values agree bit for bit.
+// The grid-job rules that `ebgeom sdf`, `ebgeom-mpi sdf` and the Python package share: the
+// options, the grid they describe, and loading the input (mesh or scene) into a `SceneSdf<T>`.
+// All three turn the same options into the same grid, so their values agree bit for bit.
+// Errors are thrown as `scene::ToolError` with the tools' exit codes.
 
 #include <CLI/CLI.hpp>
 
@@ -14,13 +15,14 @@
 #include <string>
 #include <vector>
 
-#include "common.hpp"
 #include "ebgeom/eval/grid_spec.hpp"
+#include "ebgeom/jobs/number_options.hpp"
+#include "ebgeom/scene/error.hpp"
 #include "ebgeom/scene/mesh_input.hpp"
 #include "ebgeom/scene/scene.hpp"
-#include "number_options.hpp"
+#include "ebgeom/scene/system.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::jobs {
 
 /// Options of `ebgeom sdf` (and `ebgeom-mpi sdf`).
 struct SdfOptions {
@@ -92,28 +94,30 @@ inline void add_sdf_options(CLI::App* sub, const std::shared_ptr<SdfOptions>& o)
   });
 }
 
-/// The grid the options describe around `bounds` (the input's bounds). Throws CliError (usage or
-/// input).
+/// The grid the options describe around `bounds` (the input's bounds). Throws scene::ToolError
+/// (usage or input).
 template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bounds) {
   GridSpec<T> spec;
   spec.centering = o.nodes ? Centering::node : Centering::cell;
   if (!o.box.empty()) {
     for (double v : o.box)
-      if (!std::isfinite(v) || std::abs(v) > max_magnitude<T>())
-        fail(exit_usage, "--box: every value must be a finite number of magnitude at most " +
-                             std::to_string(max_magnitude<T>()) + " in " + precision_name<T>() +
-                             " precision");
+      if (!std::isfinite(v) || std::abs(v) > scene::max_magnitude<T>())
+        scene::fail(scene::exit_usage,
+                    "--box: every value must be a finite number of magnitude at most " +
+                        std::to_string(scene::max_magnitude<T>()) + " in " +
+                        scene::precision_name<T>() + " precision");
     spec.box =
         Aabb<T>({T(o.box[0]), T(o.box[1]), T(o.box[2])}, {T(o.box[3]), T(o.box[4]), T(o.box[5])});
     for (int a = 0; a < 3; ++a)
       if (!(spec.box.lo[a] < spec.box.hi[a]))
-        fail(exit_usage,
-             std::string("--box: X0 Y0 Z0 must be below X1 Y1 Z1 (axis ") + "xyz"[a] + ")");
+        scene::fail(scene::exit_usage,
+                    std::string("--box: X0 Y0 Z0 must be below X1 Y1 Z1 (axis ") + "xyz"[a] + ")");
   } else {
     for (int a = 0; a < 3; ++a)
       if (!std::isfinite(bounds.lo[a]) || !std::isfinite(bounds.hi[a]))
-        fail(exit_usage, o.input + ": the input is unbounded (e.g. a plane); give --box");
-    if (bounds.is_empty()) fail(exit_input, o.input + ": the input is empty");
+        scene::fail(scene::exit_usage,
+                    o.input + ": the input is unbounded (e.g. a plane); give --box");
+    if (bounds.is_empty()) scene::fail(scene::exit_input, o.input + ": the input is empty");
     const Vec3<T> e = bounds.extent();
     const T big = max_component(e) > T(0) ? max_component(e) : T(1);
     Vec3<T> pad;
@@ -125,7 +129,7 @@ template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bou
     // the cell size that puts N cells on the longest axis
     const std::size_t n = o.res.empty() ? 64 : o.res[0];
     const std::size_t cells = o.nodes ? n - 1 : n;
-    if (cells < 1) fail(exit_usage, "--cubic with --nodes needs --res N >= 2");
+    if (cells < 1) scene::fail(scene::exit_usage, "--cubic with --nodes needs --res N >= 2");
     dx = double(max_component(spec.box.extent())) / double(cells);
   }
   if (dx > 0) {
@@ -136,7 +140,8 @@ template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bou
       const double x = double(e[a]) / dx;
       const double tol = o.cubic ? 4 * double(std::numeric_limits<T>::epsilon()) * x : 1e-9;
       const double n = std::ceil(x - tol);
-      if (n > double(1 << 21)) fail(exit_usage, "--dx is too small for the box (over 2^21 cells)");
+      if (n > double(1 << 21))
+        scene::fail(scene::exit_usage, "--dx is too small for the box (over 2^21 cells)");
       spec.dims[a] = std::max<std::size_t>(1, std::size_t(n)) + (o.nodes ? 1 : 0);
       const std::size_t cells = o.nodes ? spec.dims[a] - 1 : spec.dims[a];
       spec.box.hi[a] = spec.box.lo[a] + T(double(std::max<std::size_t>(cells, 1)) * dx);
@@ -147,47 +152,48 @@ template <class T> GridSpec<T> make_spec(const SdfOptions& o, const Aabb<T>& bou
     const std::size_t n = o.res.empty() ? 64 : o.res[0];
     spec.dims = {{n, n, n}};
   }
-  if (auto ok = spec.validate(); !ok) fail(exit_usage, ok.error().what());
+  if (auto ok = spec.validate(); !ok) scene::fail(scene::exit_usage, ok.error().what());
   return spec;
 }
 
 /// Refuses to write a grid with NaN or infinite samples (counted by `grid_stats`): they come from
 /// values the working precision cannot carry (e.g. nested scales), never from a valid SDF.
-/// `non_finite` is `GridStats::non_finite`. Throws CliError (input) naming the count.
+/// `non_finite` is `GridStats::non_finite`. Throws scene::ToolError (input) naming the count.
 inline void require_finite_grid(std::uint64_t non_finite, std::uint64_t samples,
                                 const std::string& input) {
   if (non_finite == 0) return;
-  fail(exit_input, input + ": " + std::to_string(non_finite) + " of " + std::to_string(samples) +
-                       " samples are NaN or infinite (values too extreme for the working "
-                       "precision); nothing written. Try --precision double or rescale the input");
+  scene::fail(scene::exit_input,
+              input + ": " + std::to_string(non_finite) + " of " + std::to_string(samples) +
+                  " samples are NaN or infinite (values too extreme for the working "
+                  "precision); nothing written. Try --precision double or rescale the input");
 }
 
 /// An input loaded for sampling, with the times its phases took.
 template <class T> struct SdfInput {
-  SceneSdf<T> prog; ///< a scene, or one mesh (`prog.mesh()`)
-  SceneInfo info;
+  scene::SceneSdf<T> prog; ///< a scene, or one mesh (`prog.mesh()`)
+  scene::SceneInfo info;
   bool scene = false;
   double parse_s = 0, build_s = 0;
 };
 
 /// Reads `o.input` (a scene by extension, otherwise a mesh with sign mode `sign`) into a
-/// `SceneSdf<T>`. Throws CliError (input, usage) with the reader's message.
+/// `SceneSdf<T>`. Throws scene::ToolError (input, usage) with the reader's message.
 template <class T> SdfInput<T> load_sdf_input(const SdfOptions& o, SignMode sign) {
   SdfInput<T> in;
-  in.scene = is_scene_path(o.input);
-  const double t0 = now_s();
+  in.scene = scene::is_scene_path(o.input);
+  const double t0 = scene::now_s();
   double t1;
   if (in.scene) {
-    const Json doc = read_json_file(o.input);
-    t1 = now_s();
-    in.prog = compile_scene<T>(doc, o.input, &in.info);
+    const scene::Json doc = scene::read_json_file(o.input);
+    t1 = scene::now_s();
+    in.prog = scene::compile_scene<T>(doc, o.input, &in.info);
   } else {
-    PolygonSoup<T> soup = load_mesh<T>(o.input);
-    t1 = now_s();
-    in.prog = mesh_scene(soup, o.input, sign);
+    PolygonSoup<T> soup = scene::load_mesh<T>(o.input);
+    t1 = scene::now_s();
+    in.prog = scene::mesh_scene(soup, o.input, sign);
   }
   in.parse_s = t1 - t0;
-  in.build_s = now_s() - t1;
+  in.build_s = scene::now_s() - t1;
   return in;
 }
 
@@ -195,9 +201,9 @@ template <class T> SdfInput<T> load_sdf_input(const SdfOptions& o, SignMode sign
 /// the output, the grid (dims, box, spacing, origin, centering), the precision and the band
 /// (length units).
 template <class T>
-Json grid_job_json(const SdfOptions& o, const SdfInput<T>& in, const GridSpec<T>& spec,
-                   double band) {
-  Json j;
+scene::Json grid_job_json(const SdfOptions& o, const SdfInput<T>& in, const GridSpec<T>& spec,
+                          double band) {
+  scene::Json j;
   j["input"] = o.input;
   j["input_kind"] = in.scene ? "scene" : "mesh";
   j["output"] = o.output;
@@ -214,4 +220,4 @@ Json grid_job_json(const SdfOptions& o, const SdfInput<T>& in, const GridSpec<T>
   return j;
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::jobs

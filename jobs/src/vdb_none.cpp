@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 // `write_vdb` in a build without OpenVDB: a clear error saying how to get it.
-#include "vdb_output.hpp"
+#include "ebgeom/jobs/vdb_output.hpp"
 
-namespace ebgeom::cli {
+namespace ebgeom::jobs {
 
 namespace {
 Result<std::uint64_t> no_openvdb(const std::string& path) {
@@ -23,4 +23,4 @@ Result<std::uint64_t> write_vdb(const std::string& path, const SparseGrid<double
   return no_openvdb(path);
 }
 
-} // namespace ebgeom::cli
+} // namespace ebgeom::jobs
