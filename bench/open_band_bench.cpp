@@ -62,7 +62,7 @@ template <class S> Run run_band(const S& sdf, const GridSpec<T>& spec, const Gri
   r.cpu = cpu_seconds() - c0;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!g) {
-    std::fprintf(stderr, "sample_grid_sparse: %s\n", g.error().what());
+    std::fprintf(stderr, "sample_grid_sparse: %s\n", g.error().what().c_str());
     std::exit(1);
   }
   r.blocks = g->block_count();
@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
   }
   auto soup = io::read_mesh<T>(o.mesh);
   if (!soup) {
-    std::fprintf(stderr, "%s\n", soup.error().what());
+    std::fprintf(stderr, "%s\n", soup.error().what().c_str());
     return 1;
   }
   const auto mesh_sdf = MeshSdf<T>::build(*soup).value();

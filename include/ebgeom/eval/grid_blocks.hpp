@@ -250,6 +250,26 @@ void eval_split_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
                       m = std::min(m, vals[x + W * (y + W * z)]);
                 return m;
               });
+  if constexpr (has_batch_sign_v<S>) {
+    // The samples left, in groups of 4x2x2 neighbours: one batch (packets of nearby samples).
+    Vec3<T> pts[W * W * W];
+    Sign got[W * W * W];
+    std::uint16_t idx[W * W * W];
+    std::size_t m = 0;
+    for (std::size_t gz = 0; gz < size[2]; gz += 2)
+      for (std::size_t gy = 0; gy < size[1]; gy += 2)
+        for (std::size_t gx = 0; gx < size[0]; gx += 4)
+          for (std::size_t z = gz; z < std::min(size[2], gz + 2); ++z)
+            for (std::size_t y = gy; y < std::min(size[1], gy + 2); ++y)
+              for (std::size_t x = gx; x < std::min(size[0], gx + 4); ++x) {
+                const std::size_t l = x + W * (y + W * z);
+                if (!(vals[l] > T(0)) || sg[l] != Sign::unknown) continue;
+                idx[m] = static_cast<std::uint16_t>(l);
+                pts[m++] = f.point(base[0] + x, base[1] + y, base[2] + z);
+              }
+    sdf.signs_at(Span<const Vec3<T>>(pts, m), Span<Sign>(got, m));
+    for (std::size_t i = 0; i < m; ++i) sg[idx[i]] = got[i];
+  }
   for (std::size_t z = 0; z < size[2]; ++z)
     for (std::size_t y = 0; y < size[1]; ++y)
       for (std::size_t x = 0; x < size[0]; ++x) {

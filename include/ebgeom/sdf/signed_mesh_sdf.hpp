@@ -17,6 +17,7 @@
 ///
 /// See docs/sign.md for the outcomes of each mode on imperfect meshes.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -24,6 +25,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/span.hpp"
@@ -234,6 +236,25 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
     }
   }
 
+  /// Split-sign protocol, batch form: `out[i] = sign_at(pts[i])` for every i, the winding modes'
+  /// fast winding numbers evaluated in packets (`FastWindingNumber::eval_packet`, bit for bit the
+  /// per-point values) over runs of consecutive points: order them so that neighbours are near.
+  void signs_at(Span<const Vec3<T>> pts, Span<Sign> out) const noexcept {
+    EBGEOM_ASSERT(pts.size() == out.size());
+    if (mode_ != SignMode::fast_winding) {
+      for (std::size_t i = 0; i < pts.size(); ++i) out[i] = sign_at(pts[i]);
+      return;
+    }
+    constexpr int P = FastWindingNumber<T, K>::packet_width;
+    T w[P];
+    for (std::size_t i = 0; i < pts.size(); i += std::size_t(P)) {
+      const int n = int(std::min(pts.size() - i, std::size_t(P)));
+      fast_.eval_packet(pts.data() + i, n, w);
+      for (int j = 0; j < n; ++j)
+        out[i + std::size_t(j)] = w[j] > T(0.5) ? Sign::negative : Sign::positive;
+    }
+  }
+
   /// Split-sign protocol: a sign `sign_at` gives at every point of `box`, or `unknown`. Winding
   /// modes bound the winding number over the box (`FastWindingNumber::range_over`, or
   /// `winding_range` for the exact sum: O(n)) and answer only when the whole interval lies on
@@ -257,12 +278,34 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
   }
 
   /// Values at a block of lattice samples, bit for bit `(*this)(pts[l])`: the distances of
-  /// `MeshSdf::eval_lattice`, then the sign of the mode per sample.
+  /// `MeshSdf::eval_lattice`, then the sign of the mode per sample (the fast winding sign in
+  /// packets of nearby samples, `signs_at`).
   void eval_lattice(Span<const Vec3<T>> pts, const std::array<std::size_t, 3>& dims,
                     Span<T> out) const {
     sdf_.eval_lattice(pts, dims, out);
     if (mode_ == SignMode::pseudonormal) return;
-    for (std::size_t l = 0; l < pts.size(); ++l) out[l] = with_sign(std::abs(out[l]), pts[l]);
+    if (mode_ != SignMode::fast_winding) {
+      for (std::size_t l = 0; l < pts.size(); ++l) out[l] = with_sign(std::abs(out[l]), pts[l]);
+      return;
+    }
+    // Samples off the surface, in groups of 4x2x2 neighbours (x fastest).
+    std::vector<std::size_t> idx;
+    idx.reserve(pts.size());
+    for (std::size_t gz = 0; gz < dims[2]; gz += 2)
+      for (std::size_t gy = 0; gy < dims[1]; gy += 2)
+        for (std::size_t gx = 0; gx < dims[0]; gx += 4)
+          for (std::size_t z = gz; z < std::min(dims[2], gz + 2); ++z)
+            for (std::size_t y = gy; y < std::min(dims[1], gy + 2); ++y)
+              for (std::size_t x = gx; x < std::min(dims[0], gx + 4); ++x) {
+                const std::size_t l = x + dims[0] * (y + dims[1] * z);
+                out[l] = std::abs(out[l]);
+                if (out[l] > T(0)) idx.push_back(l);
+              }
+    std::vector<Vec3<T>> q(idx.size());
+    std::vector<Sign> sg(idx.size());
+    for (std::size_t i = 0; i < idx.size(); ++i) q[i] = pts[idx[i]];
+    signs_at(Span<const Vec3<T>>(q), Span<Sign>(sg));
+    for (std::size_t i = 0; i < idx.size(); ++i) out[idx[i]] = apply_sign(out[idx[i]], sg[i]);
   }
 
   /// Winding number at `p` by the resolved mode's method: exact for `winding`, fast otherwise

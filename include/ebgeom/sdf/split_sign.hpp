@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
 
 namespace ebgeom {
@@ -51,5 +52,19 @@ struct has_split_sign<S, std::void_t<decltype(std::declval<const S&>().unsigned_
 /// - `Sign sign_over(const Aabb<T>& box)`: a sign every point of `box` gets from `sign_at`, or
 ///   `unknown` when none is proven (never a wrong one).
 template <class S> inline constexpr bool has_split_sign_v = detail::has_split_sign<S>::value;
+
+namespace detail {
+template <class S, class = void> struct has_batch_sign : std::false_type {};
+template <class S>
+struct has_batch_sign<
+    S, std::void_t<decltype(std::declval<const S&>().signs_at(
+           std::declval<Span<const Vec3<typename S::scalar_type>>>(), std::declval<Span<Sign>>()))>>
+    : std::true_type {};
+} // namespace detail
+
+/// True when a split-sign `S` also has the batch form `void signs_at(Span<const Vec3<T>> pts,
+/// Span<Sign> out) const`: `out[i] = sign_at(pts[i])` for every i, faster for runs of nearby
+/// points (grid samplers pass a tile's unsigned samples in groups of neighbours).
+template <class S> inline constexpr bool has_batch_sign_v = detail::has_batch_sign<S>::value;
 
 } // namespace ebgeom

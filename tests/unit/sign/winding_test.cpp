@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -134,6 +137,90 @@ TEST(WindingBvh, EveryWidthAgrees) {
     EXPECT_NEAR(f4(p), e, test::fast_winding_tolerance);
     EXPECT_NEAR(f8(p), e, test::fast_winding_tolerance);
   }
+}
+
+template <class T> bool same_bits(T a, T b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// Points to evaluate in packets: random points around the mesh, and the samples of a fine
+/// lattice next to the surface, in 4x2x2 groups (as grid tiles give them), some on vertices.
+template <class T>
+std::vector<Vec3<T>> packet_points(const TriangleMesh<T>& m, std::uint64_t seed) {
+  std::vector<Vec3<T>> pts = test::random_points(m.bounds().grown(T(0.4)), 1600, seed);
+  const Aabb<T> box = m.bounds().grown(T(0.05));
+  const T h = max_component(box.extent()) / T(60);
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(0, m.triangle_count() - 1);
+  for (int g = 0; g < 200; ++g) { // groups of 4x2x2 lattice samples around a random triangle
+    const Vec3<T> c = m.corner(pick(rng), 0);
+    const Vec3<T> o{box.lo.x + h * std::floor((c.x - box.lo.x) / h),
+                    box.lo.y + h * std::floor((c.y - box.lo.y) / h),
+                    box.lo.z + h * std::floor((c.z - box.lo.z) / h)};
+    for (int z = 0; z < 2; ++z)
+      for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) pts.push_back(o + Vec3<T>{T(x), T(y), T(z)} * h);
+  }
+  for (std::size_t v = 0; v < m.vertices.size(); v += 7) pts.push_back(m.vertices[v]);
+  return pts;
+}
+
+template <class T, int K> void expect_packets_equal_points(const TriangleMesh<T>& m, int leaf) {
+  WindingOptions o;
+  o.max_leaf_size = std::uint32_t(leaf);
+  const auto fw = FastWindingNumber<T, K>::make(m, o).value();
+  const std::vector<Vec3<T>> pts = packet_points(m, std::uint64_t(K * 100 + leaf));
+  std::vector<T> ref(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) ref[i] = fw(pts[i]);
+  // Packets of every size over consecutive points (near ones in the lattice groups, far apart
+  // among the random ones).
+  constexpr int P = FastWindingNumber<T, K>::packet_width;
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int> size(1, P);
+  T out[P];
+  for (std::size_t i = 0; i < pts.size();) {
+    const int n = int(std::min<std::size_t>(std::size_t(size(rng)), pts.size() - i));
+    fw.eval_packet(pts.data() + i, n, out);
+    for (int j = 0; j < n; ++j)
+      ASSERT_TRUE(same_bits(out[j], ref[i + std::size_t(j)]))
+          << pts[i + std::size_t(j)] << ": packet " << out[j] << " vs " << ref[i + std::size_t(j)];
+    i += std::size_t(n);
+  }
+  // The batch call, and a packet holding a NaN point: the others are unaffected.
+  std::vector<T> all(pts.size());
+  fw.eval(Span<const Vec3<T>>(pts), Span<T>(all));
+  for (std::size_t i = 0; i < pts.size(); ++i) ASSERT_TRUE(same_bits(all[i], ref[i])) << i;
+  Vec3<T> mixed[P];
+  for (int j = 0; j < P; ++j) mixed[j] = pts[pts.size() - 1 - std::size_t(j) * 3];
+  mixed[5] = {std::numeric_limits<T>::quiet_NaN(), T(0), T(0)};
+  fw.eval_packet(mixed, P, out);
+  for (int j = 0; j < P; ++j)
+    if (j != 5) {
+      ASSERT_TRUE(same_bits(out[j], fw(mixed[j]))) << j;
+    }
+}
+
+TYPED_TEST(WindingTest, PacketsAreThePerPointValuesBitForBit) {
+  using T = TypeParam;
+  const std::pair<const char*, PolygonSoup<T>> meshes[] = {
+      {"open bowl", test::remove_cap(make_icosphere<T>(4).value(), T(0.3))},
+      {"open torus", test::remove_cap(make_torus<T>(1, T(0.3), 48, 16).value(), T(0.1))},
+      {"open box",
+       test::remove_cap(make_box<T>({-1, -0.7f, -0.5f}, {1, 0.7f, 0.5f}).value(), T(0.4))},
+      {"closed ball", make_icosphere<T>(3).value()}};
+  for (const auto& [name, soup] : meshes) {
+    SCOPED_TRACE(name);
+    const TriangleMesh<T> m = make_triangle_mesh(soup).value();
+    expect_packets_equal_points<T, 4>(m, 8);
+    expect_packets_equal_points<T, 8>(m, 8);
+    expect_packets_equal_points<T, 2>(m, 1);
+    expect_packets_equal_points<T, 4>(m, 3);
+  }
+  // A single-leaf tree (the root is a leaf) and an empty packet.
+  const TriangleMesh<T> tet = make_triangle_mesh(make_tetrahedron<T>().value()).value();
+  expect_packets_equal_points<T, 4>(tet, 8);
+  const auto fw = FastWindingNumber<T>::make(tet).value();
+  T untouched = T(7);
+  fw.eval_packet(nullptr, 0, &untouched);
+  EXPECT_EQ(untouched, T(7));
 }
 
 } // namespace
