@@ -20,10 +20,10 @@ count. See docs/python.md for the full guide.
 
 from __future__ import annotations
 
+import itertools as _itertools
 import json as _json
 import math as _math
 import os as _os
-import tempfile as _tempfile
 import weakref as _weakref
 from dataclasses import dataclass as _dataclass
 from typing import Any, Dict, Optional, Sequence, Tuple, Union
@@ -290,7 +290,7 @@ class Shape:
 
     def __init__(self, node: Dict[str, Any], keep: Tuple[Any, ...] = ()):
         self.node = node
-        self._keep = keep  # the files of in-memory meshes the node names (see ``mesh``)
+        self._keep = keep  # (ref, Mesh) of the in-memory meshes the node names (see ``mesh``)
         self._compiled: Dict[str, Scene] = {}
 
     def to_json(self) -> Dict[str, Any]:
@@ -300,7 +300,10 @@ class Shape:
     def compile(self, precision: str = "float") -> Scene:
         """The compiled scene (cached)."""
         if precision not in self._compiled:
-            self._compiled[precision] = scene_from_json(self.to_json(), precision)
+            doc = self.to_json()
+            self._compiled[precision] = Scene(
+                _ebgeom.compile_scene(_json.dumps(doc), "<scene>", precision, False,
+                                      dict(self._keep)), doc)
         return self._compiled[precision]
 
     def __call__(self, points: Any, *, threads: int = 0, precision: str = "double",
@@ -437,17 +440,9 @@ def plane(normal: Sequence[float], point: Sequence[float] = (0, 0, 0)) -> Shape:
     return Shape({"type": "plane", "normal": _vec(normal, "normal"), "point": _vec(point, "point")})
 
 
-class _MeshFile:
-    """An in-memory mesh written once, losslessly (binary PLY keeps float64 vertices and the
-    faces as given), where the scene compiler reads it; removed when no shape refers to it."""
-
-    def __init__(self, m: Mesh):
-        self._dir = _tempfile.TemporaryDirectory(prefix="ebgeom-mesh-")
-        self.path = _os.path.join(self._dir.name, "mesh.ply")
-        m.write(self.path)
-
-
-_mesh_files: "_weakref.WeakKeyDictionary[Any, _MeshFile]" = _weakref.WeakKeyDictionary()
+# The reference ("ref" in a mesh node) of each in-memory mesh used in a shape: one per mesh.
+_mesh_refs: "_weakref.WeakKeyDictionary[Any, str]" = _weakref.WeakKeyDictionary()
+_mesh_ref_count = _itertools.count(1)
 
 
 def mesh(source: Union[PathLike, Mesh, "MeshSdf"], sign: Optional[str] = None) -> Shape:
@@ -458,9 +453,11 @@ def mesh(source: Union[PathLike, Mesh, "MeshSdf"], sign: Optional[str] = None) -
     accept a ``Mesh`` or ``MeshSdf`` directly. The SDF of the node is ``MeshSdf(mesh, sign)``'s,
     value for value.
 
-    A mesh built from arrays reaches the scene compiler as a temporary binary PLY file (exact:
-    float64 vertices, the faces as given) that lives as long as a shape refers to it; its
-    ``to_json()`` names that file, so write the mesh (``mesh.write``) to keep a scene file.
+    A mesh built from arrays reaches the scene compiler in memory (no file is written): its node
+    names it by reference (``{"type": "mesh", "ref": "mesh-1"}``), which the shapes that contain
+    it resolve when they compile. A scene file from ``to_json()`` therefore holds only the
+    reference; write the mesh (``mesh.write``) and use ``ebgeom.mesh(path)`` for a scene file that
+    the command-line tool reads.
 
     >>> part = ebgeom.mesh("part.stl") - ebgeom.cylinder((0, 0, -1), (0, 0, 1), 0.1)
     >>> blob = ebgeom.Mesh(vertices, faces) | ebgeom.sphere(0.5)
@@ -473,10 +470,11 @@ def mesh(source: Union[PathLike, Mesh, "MeshSdf"], sign: Optional[str] = None) -
         if source.path:
             path = _os.path.abspath(source.path)  # read as the file's own numbers, as MeshSdf
         else:
-            f = _mesh_files.get(source)
-            if f is None:
-                f = _mesh_files[source] = _MeshFile(source)
-            path, keep = f.path, (f,)
+            ref = _mesh_refs.get(source)
+            if ref is None:
+                ref = _mesh_refs[source] = f"mesh-{next(_mesh_ref_count)}"
+            return Shape({"type": "mesh", "ref": ref, "sign": "auto" if sign is None else sign},
+                         ((ref, source),))
     else:
         path = _os.path.abspath(_os.fspath(source))
     return Shape({"type": "mesh", "path": path, "sign": "auto" if sign is None else sign}, keep)

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,6 +41,7 @@
 #include "ebgeom/scene/error.hpp"
 #include "ebgeom/scene/gltf.hpp"
 #include "ebgeom/scene/mesh_input.hpp"
+#include "ebgeom/scene/mesh_registry.hpp"
 #include "ebgeom/scene/scene.hpp"
 #include "ebgeom/scene/system.hpp"
 
@@ -323,9 +325,18 @@ Sdf make_mesh_sdf(const Mesh& m, const std::string& sign, const std::string& pre
 }
 
 /// Compiles a scene given as JSON text; `file` names it in errors and anchors relative mesh paths.
+/// Mesh nodes with "ref": NAME take `meshes[NAME]` as it is in memory (scene::MeshRegistry: shared,
+/// no copy, no file): in double its vertices, in float each rounded to float, as `soup_float` does
+/// for a mesh built from arrays, so the node's values are MeshSdf(mesh)'s.
 Sdf make_scene(const std::string& json_text, const std::string& file, const std::string& precision,
-               bool from_file) {
+               bool from_file, const std::map<std::string, std::shared_ptr<Mesh>>& meshes) {
   const bool dbl = parse_precision(precision);
+  scene::MeshRegistry registry;
+  for (const auto& [name, mesh] : meshes) {
+    if (!mesh) throw py::type_error("meshes: expected ebgeom.Mesh values");
+    // shares the Mesh object: the registry's pointer keeps it alive while the scene compiles
+    registry.add(name, std::shared_ptr<const PolygonSoup<double>>(mesh, &mesh->soup));
+  }
   Sdf s;
   s.label = file;
   py::gil_scoped_release nogil;
@@ -334,10 +345,10 @@ Sdf make_scene(const std::string& json_text, const std::string& file, const std:
                                       : scene::Json::parse(json_text, nullptr, true, true);
     if (dbl) {
       s.d = std::make_shared<SdfImpl<double>>();
-      s.d->prog = scene::compile_scene<double>(doc, file);
+      s.d->prog = scene::compile_scene<double>(doc, file, nullptr, &registry);
     } else {
       s.f = std::make_shared<SdfImpl<float>>();
-      s.f->prog = scene::compile_scene<float>(doc, file);
+      s.f->prog = scene::compile_scene<float>(doc, file, nullptr, &registry);
     }
   } catch (const scene::Json::exception& e) {
     py::gil_scoped_acquire gil;
@@ -998,7 +1009,8 @@ PYBIND11_MODULE(_ebgeom, m) {
   m.def("mesh_sdf", &make_mesh_sdf, py::arg("mesh"), py::arg("sign") = "auto",
         py::arg("precision") = "float");
   m.def("compile_scene", &make_scene, py::arg("json"), py::arg("file"),
-        py::arg("precision") = "float", py::arg("from_file") = false);
+        py::arg("precision") = "float", py::arg("from_file") = false,
+        py::arg("meshes") = std::map<std::string, std::shared_ptr<Mesh>>{});
   m.def("sample_grid", &sample_grid_py, py::arg("sdf"), py::arg("box"), py::arg("res"),
         py::arg("dx"), py::arg("pad"), py::arg("band"), py::arg("nodes"), py::arg("threads"));
   m.def("sample_sparse", &sample_sparse_py, py::arg("sdf"), py::arg("box"), py::arg("res"),

@@ -9,6 +9,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 import threading
 
 import numpy as np
@@ -555,20 +556,23 @@ def test_in_memory_mesh_in_csg(precision):
                                atol=1e-6 if precision == "float" else 1e-14)
 
 
-def test_in_memory_mesh_file_lives_with_its_shapes(tmp_path):
+def test_in_memory_mesh_lives_with_its_shapes_without_a_file(tmp_path, monkeypatch):
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))  # a temporary file would show here
     m = ebgeom.Mesh(*cube())
     s = m | ebgeom.sphere(0.1, (3, 0, 0))
-    path = s.node["children"][0]["path"]
-    assert os.path.exists(path)
-    assert ebgeom.mesh(m).node["path"] == path  # written once per mesh
+    node = s.node["children"][0]
+    assert "path" not in node and node["ref"].startswith("mesh-")
+    assert ebgeom.mesh(m).node["ref"] == node["ref"]  # one reference per mesh
+    assert ebgeom.mesh(ebgeom.Mesh(*cube())).node["ref"] != node["ref"]
     t = s.translate((1, 0, 0))
     del s, m
     gc.collect()
-    assert os.path.exists(path)  # t still refers to it
-    np.testing.assert_allclose(t([[1, 0, 0]]), [-1], atol=1e-12)
-    del t
-    gc.collect()
-    assert not os.path.exists(path)
+    np.testing.assert_allclose(t([[1, 0, 0]]), [-1], atol=1e-12)  # t keeps the mesh alive
+    assert os.listdir(tmp_path) == []  # nothing written
+    # the scene file names the reference, which only the shapes that hold the mesh resolve
+    with pytest.raises(ebgeom.SceneError, match='/root/children/0/ref: no in-memory mesh is '
+                                                'registered as "mesh-'):
+        ebgeom.scene_from_json(t.to_json())
     # a mesh read from a file is used through its file, as MeshSdf reads it
     mp = tmp_path / "cube.obj"
     ebgeom.Mesh(*cube()).write(mp)

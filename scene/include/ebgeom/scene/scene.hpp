@@ -27,6 +27,7 @@
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/scene/error.hpp"
 #include "ebgeom/scene/mesh_input.hpp"
+#include "ebgeom/scene/mesh_registry.hpp"
 #include "ebgeom/scene/nodes.hpp"
 #include "ebgeom/scene/scene_sdf.hpp"
 #include "ebgeom/sdf/shapes.hpp"
@@ -59,7 +60,7 @@ bool is_scene_path(const std::string& path);
 /// The sign mode one mesh of a scene got, and why.
 struct MeshSignUse {
   std::string where;  ///< JSON pointer of the mesh node
-  std::string source; ///< mesh file, or "generate: NAME"
+  std::string source; ///< mesh file, "generate: NAME" or "ref: NAME" (an in-memory mesh)
   SignMode requested = SignMode::automatic, used = SignMode::automatic;
   std::string reason; ///< "requested", or what `auto` found
 };
@@ -134,7 +135,8 @@ template <class T> struct Built {
 
 template <class T> class SceneCompiler {
  public:
-  SceneCompiler(std::string file, SceneInfo& info) : file_(std::move(file)), info_(info) {
+  SceneCompiler(std::string file, SceneInfo& info, const MeshRegistry* meshes = nullptr)
+      : file_(std::move(file)), info_(info), meshes_(meshes) {
     dir_ = std::filesystem::path(file_).parent_path().string();
   }
 
@@ -463,7 +465,7 @@ template <class T> class SceneCompiler {
 
   Built<T> mesh(const Json& j, const std::string& ptr) {
     check_keys(j, ptr, "mesh",
-               {"path", "generate", "sign", "subdivisions", "radius", "major_radius",
+               {"path", "generate", "ref", "sign", "subdivisions", "radius", "major_radius",
                 "minor_radius", "min", "max"});
     SignMode sign = SignMode::automatic;
     if (j.contains("sign")) {
@@ -473,10 +475,33 @@ template <class T> class SceneCompiler {
       sign = *m;
     }
     PolygonSoup<T> soup;
-    std::string label;
-    if (j.contains("path") == j.contains("generate"))
-      bad(ptr, "a mesh needs exactly one of \"path\" (a mesh file) or \"generate\"");
-    if (j.contains("path")) {
+    const PolygonSoup<T>* input = &soup; // an in-memory double mesh is used where it is
+    std::string label, source;
+    if (int(j.contains("path")) + int(j.contains("generate")) + int(j.contains("ref")) != 1)
+      bad(ptr, "a mesh needs exactly one of \"path\" (a mesh file), \"generate\" or \"ref\" (an "
+               "in-memory mesh)");
+    if (j.contains("ref")) {
+      if (!j["ref"].is_string()) bad(ptr + "/ref", "expected the name of an in-memory mesh");
+      const std::string name = j["ref"];
+      const MeshRegistry::MeshPtr m = meshes_ ? meshes_->find(name) : nullptr;
+      if (!m)
+        bad(ptr + "/ref",
+            "no in-memory mesh is registered as \"" + shorten(name, 40) + "\"" +
+                (meshes_ && !meshes_->empty()
+                     ? " (" + std::to_string(meshes_->size()) + " registered)"
+                     : std::string(" (none are: a scene file read on its own names mesh files "
+                                   "with \"path\")")));
+      label = "in-memory mesh \"" + name + "\"";
+      source = "ref: " + name;
+      if constexpr (std::is_same_v<T, double>) {
+        input = m.get();
+      } else {
+        soup.indices = m->indices;
+        soup.offsets = m->offsets;
+        soup.vertices.reserve(m->vertices.size());
+        for (const Vec3<double>& v : m->vertices) soup.vertices.push_back(Vec3<T>::from(v));
+      }
+    } else if (j.contains("path")) {
       if (!j["path"].is_string()) bad(ptr + "/path", "expected a file name string");
       std::filesystem::path p = j["path"].get<std::string>();
       if (p.is_relative() && !dir_.empty()) p = std::filesystem::path(dir_) / p;
@@ -485,6 +510,7 @@ template <class T> class SceneCompiler {
       if (std::filesystem::is_directory(p))
         bad(ptr + "/path", label + " is a directory, not a mesh file");
       soup = load_mesh<T>(label);
+      source = label;
     } else {
       if (!j["generate"].is_string()) bad(ptr + "/generate", "expected a string");
       const std::string g = j["generate"];
@@ -512,11 +538,10 @@ template <class T> class SceneCompiler {
       }
       if (!r) bad(ptr, r.error().what());
       soup = std::move(*r);
+      source = "generate: " + g;
     }
-    auto sdf = std::make_shared<const SignedMeshSdf<T>>(build_mesh_sdf(soup, label, sign));
-    info_.mesh_signs.push_back(
-        {ptr, j.contains("path") ? label : "generate: " + j["generate"].template get<std::string>(),
-         sign, sdf->resolved_mode(), sdf->reason()});
+    auto sdf = std::make_shared<const SignedMeshSdf<T>>(build_mesh_sdf(*input, label, sign));
+    info_.mesh_signs.push_back({ptr, source, sign, sdf->resolved_mode(), sdf->reason()});
     ++info_.meshes;
     triangles_ += sdf->triangle_count();
     const Aabb<T> b = sdf->bounds();
@@ -525,6 +550,7 @@ template <class T> class SceneCompiler {
 
   std::string file_, dir_;
   SceneInfo& info_;
+  const MeshRegistry* meshes_ = nullptr;
   std::size_t triangles_ = 0;
   std::size_t depth_ = 0;
   static constexpr std::size_t max_depth = 200;
@@ -533,11 +559,14 @@ template <class T> class SceneCompiler {
 } // namespace internal
 
 /// Compiles the scene `doc` (read from `file`, used in messages and to resolve relative mesh
-/// paths) into the library's SDFs. Throws ToolError (input) naming the offending JSON pointer.
+/// paths) into the library's SDFs. Mesh nodes with `"ref": NAME` take the mesh registered under
+/// NAME in `meshes` (mesh_registry.hpp; none when null). Throws ToolError (input) naming the
+/// offending JSON pointer (an unknown reference too).
 template <class T>
-SceneSdf<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* info = nullptr) {
+SceneSdf<T> compile_scene(const Json& doc, const std::string& file, SceneInfo* info = nullptr,
+                          const MeshRegistry* meshes = nullptr) {
   SceneInfo si;
-  internal::SceneCompiler<T> c(file, si);
+  internal::SceneCompiler<T> c(file, si, meshes);
   const Json* root = &doc;
   std::string ptr;
   if (doc.is_object() && doc.contains("root")) {
