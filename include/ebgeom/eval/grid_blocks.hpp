@@ -147,13 +147,15 @@ void eval_packed(const GridFrame<T>& f, const std::array<std::size_t, 3>& o,
 /// exceeds its diagonal: closer boxes rarely get a proof (the bounds grow like (radius /
 /// distance)²) and their octants are tried anyway (on the bunny at 256³, fewer failed proofs and
 /// less time than trying from half the diagonal on).
+/// Boxes of fewer than `min_samples` samples are not tried.
 template <class S, class Dist>
 void prove_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
                  const std::array<std::size_t, 3>& base, const std::array<std::size_t, 3>& lo,
-                 const std::array<std::size_t, 3>& hi, Sign* sg, Dist&& dist) {
+                 const std::array<std::size_t, 3>& hi, Sign* sg, Dist&& dist,
+                 std::size_t min_samples = 2) {
   using T = sdf_scalar_t<S>;
   constexpr std::size_t W = grid_tile;
-  if ((hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]) <= 1) return;
+  if ((hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]) < min_samples) return;
   const Vec3<T> p0 = f.point(base[0] + lo[0], base[1] + lo[1], base[2] + lo[2]);
   const Vec3<T> p1 = f.point(base[0] + hi[0] - 1, base[1] + hi[1] - 1, base[2] + hi[2] - 1);
   if (dist(lo, hi) > norm(p1 - p0)) {
@@ -176,7 +178,7 @@ void prove_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
       b[ax] = upper ? hi[ax] : mid[ax];
       empty = empty || a[ax] >= b[ax];
     }
-    if (!empty) prove_signs(sdf, f, base, a, b, sg, dist);
+    if (!empty) prove_signs(sdf, f, base, a, b, sg, dist, min_samples);
   }
 }
 
@@ -238,18 +240,21 @@ void eval_split_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
         near[l] = d <= prm.band;
         vals[l] = near[l] ? d : prm.band;
       }
-  // Signs: proofs over boxes whose samples are all farther than the box's half-diagonal.
+  // Signs: proofs over boxes whose samples are all farther than the box's diagonal; with a batch
+  // sign, not over boxes of 2x2x2 samples, whose packets cost less than their proofs (bunny,
+  // 256³: 10% less time in all).
   Sign sg[W * W * W];
   std::fill(sg, sg + W * W * W, Sign::unknown);
-  prove_signs(sdf, f, base, {{0, 0, 0}}, size, sg,
-              [&](const std::array<std::size_t, 3>& lo, const std::array<std::size_t, 3>& hi) {
-                T m = std::numeric_limits<T>::infinity();
-                for (std::size_t z = lo[2]; z < hi[2]; ++z)
-                  for (std::size_t y = lo[1]; y < hi[1]; ++y)
-                    for (std::size_t x = lo[0]; x < hi[0]; ++x)
-                      m = std::min(m, vals[x + W * (y + W * z)]);
-                return m;
-              });
+  prove_signs(
+      sdf, f, base, {{0, 0, 0}}, size, sg,
+      [&](const std::array<std::size_t, 3>& lo, const std::array<std::size_t, 3>& hi) {
+        T m = std::numeric_limits<T>::infinity();
+        for (std::size_t z = lo[2]; z < hi[2]; ++z)
+          for (std::size_t y = lo[1]; y < hi[1]; ++y)
+            for (std::size_t x = lo[0]; x < hi[0]; ++x) m = std::min(m, vals[x + W * (y + W * z)]);
+        return m;
+      },
+      has_batch_sign_v<S> ? std::size_t(9) : std::size_t(2));
   if constexpr (has_batch_sign_v<S>) {
     // The samples left, in groups of 4x2x2 neighbours: one batch (packets of nearby samples).
     Vec3<T> pts[W * W * W];
