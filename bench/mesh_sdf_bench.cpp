@@ -9,13 +9,19 @@
 //   cmake --build --preset bench --target ebgeom_bench_mesh_sdf_bench
 //   build/bench/bench/ebgeom_bench_mesh_sdf_bench MESH | --generate N
 //       [--points N=1000000] [--reps R=5] [--precision float|double|both] [--threads T=2]
-//       [--check M=20000] [--cgal-points K=100000] [--json] [--json-file PATH]
+//       [--check M=20000] [--cgal-points K=100000] [--grid N] [--json] [--json-file PATH]
 //
 // For the mesh: parse time (io::read_mesh) or generation time, TriangleMesh build time. For each
 // method: build time, memory, and query throughput (median of R runs) over N uniform random points
 // (fixed seed) in the mesh box grown by 10% of its extent on every side, on 1 and on T threads
 // (ebgeom::parallel_for, dynamic chunks). The first M points check every method's signed distance
 // against ebgeom's (or brute force's when MeshSdf is not built in). See docs/performance.md.
+//
+// --grid N: the points are the N^3 cell centres of the same box (GridSpec::cells, x fastest)
+// instead of random ones, and ebgeom answers them three ways, all timed per point in the same
+// rounds as the peers: one query per point (`ebgeom`), the batch path `evaluate` on the points
+// (`ebgeom-batch`) and the grid path `sample_grid`, one 8^3 tile at a time (`ebgeom-tile`). All
+// points are checked (the tile and batch paths must equal the per-point queries bit for bit).
 
 #include <algorithm>
 #include <array>
@@ -34,6 +40,8 @@
 #include <vector>
 
 #include "ebgeom/core/parallel.hpp"
+#include "ebgeom/eval/evaluate.hpp"
+#include "ebgeom/eval/grid.hpp"
 #include "ebgeom/geom/solid_angle.hpp"
 #include "ebgeom/io/read_mesh.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
@@ -90,6 +98,7 @@ struct Options {
   int threads = 2;
   std::size_t check = 20000;
   std::size_t cgal_points = 100000; // CGAL is timed on the first K points (it is slow)
+  std::size_t grid = 0; // > 0: the grid^3 cell centres of the box instead of random points
   bool run_float = false, run_double = true;
   bool json = false;
   std::string json_file; // also write the JSON object there (text still goes to stdout)
@@ -171,6 +180,26 @@ template <class T> std::vector<Vec3<T>> random_points(const Aabb<T>& box, std::s
     const double x = ux(rng), y = uy(rng), z = uz(rng);
     q = Vec3<T>::from(Vec3<double>{x, y, z});
   }
+  return p;
+}
+
+// The n^3 cell centres of the box grown by 10% of its extent on every side (n = 0: an empty
+// spec, unused).
+template <class T> GridSpec<T> grid_of(const Aabb<T>& box, std::size_t n) {
+  const Vec3<T> e = box.extent();
+  Aabb<T> b = box;
+  b.lo = b.lo - e * T(0.1);
+  b.hi = b.hi + e * T(0.1);
+  return GridSpec<T>::cells(b, std::max<std::size_t>(n, 1));
+}
+
+// The samples of `g` in its array order (x fastest), placed as the grid samplers place them.
+template <class T> std::vector<Vec3<T>> grid_points(const GridSpec<T>& g) {
+  std::vector<Vec3<T>> p;
+  p.reserve(g.size());
+  for (std::size_t k = 0; k < g.nz(); ++k)
+    for (std::size_t j = 0; j < g.ny(); ++j)
+      for (std::size_t i = 0; i < g.nx(); ++i) p.push_back(g.point(i, j, k));
   return p;
 }
 
@@ -276,8 +305,10 @@ template <class T> PrecisionRun run_precision(const Options& o) {
     run.mesh.scale =
         std::max({max_component(abs(b.lo)), max_component(abs(b.hi)), max_component(b.extent())});
   }
-  const std::vector<Vec3<T>> pts = random_points(box, o.points);
-  const std::size_t m = std::min(o.check, o.points);
+  const GridSpec<T> grid = grid_of(box, o.grid);
+  const std::vector<Vec3<T>> pts = o.grid > 0 ? grid_points(grid) : random_points(box, o.points);
+  // On a grid every point is checked (a tile path must equal the per-point queries everywhere).
+  const std::size_t m = o.grid > 0 ? o.points : std::min(o.check, o.points);
   // Tolerances: relative 1e-5 (float) / 1e-9 (double) plus 16 rounding units of the coordinates.
   const double rel_t = sizeof(T) == 4 ? 1e-5 : 1e-9;
   const double floor_t = 16 * double(std::numeric_limits<T>::epsilon()) * run.mesh.scale;
@@ -287,7 +318,7 @@ template <class T> PrecisionRun run_precision(const Options& o) {
   // Every method is built first; then the timed passes are interleaved (run r of every method,
   // then run r + 1), so that load from other processes hits all methods alike.
   std::vector<Pass> passes;
-  std::vector<std::vector<T>> outs(5); // one per method; never resized below (passes hold refs)
+  std::vector<std::vector<T>> outs(7); // one per method; never resized below (passes hold refs)
   std::vector<T>* out_ref = nullptr;   // the reference's output (ebgeom when built in)
   std::string ref_name;
 
@@ -320,6 +351,39 @@ template <class T> PrecisionRun run_precision(const Options& o) {
     run.rows.push_back(std::move(row));
     out_ref = &outs[0];
     ref_name = "ebgeom";
+  }
+  if (o.grid > 0) {
+    // The same object through the batch path (`evaluate`) and the grid path (`sample_grid`, one
+    // call per 8^3 tile), on the same points in the same order.
+    const MeshSdf<T>* s = sdf.get();
+    for (const char* method : {"ebgeom-batch", "ebgeom-tile"}) {
+      Row row;
+      row.method = method;
+      row.precision = row.compute = type_name<T>();
+      row.build_ms = run.rows.front().build_ms;
+      row.memory = run.rows.front().memory;
+      row.memory_note = run.rows.front().memory_note;
+      row.queries = o.points;
+      const bool tile = row.method == "ebgeom-tile";
+      row.note = tile ? "sample_grid (8^3 tiles)" : "evaluate (batches of points)";
+      std::vector<T>& out = outs[tile ? 6 : 5];
+      out.assign(o.points, T(0));
+      passes.push_back([s, tile, &pts, &out, grid](int threads) {
+        const auto t = Clock::now();
+        if (tile) {
+          GridOptions opt;
+          opt.exec.threads = threads;
+          opt.search = GridSearch::tile;
+          if (!sample_grid(*s, grid, Span<T>(out), opt)) std::abort();
+        } else {
+          ExecOptions ex;
+          ex.threads = threads;
+          if (!evaluate(*s, Span<const Vec3<T>>(pts), Span<T>(out), ex)) std::abort();
+        }
+        return ms_since(t) * 1e-3;
+      });
+      run.rows.push_back(std::move(row));
+    }
   }
 #endif
 
@@ -491,11 +555,13 @@ template <class T> PrecisionRun run_precision(const Options& o) {
   for (std::size_t k = 0; k < run.rows.size(); ++k) {
     Row& row = run.rows[k];
     if (row.is_reference) continue;
-    const std::vector<T>& out = outs[row.method == "brute"    ? 1
-                                     : row.method == "embree" ? 2
-                                     : row.method == "cgal"   ? 3
-                                     : row.method == "fcpw"   ? 4
-                                                              : 0];
+    const std::vector<T>& out = outs[row.method == "brute"          ? 1
+                                     : row.method == "embree"       ? 2
+                                     : row.method == "cgal"         ? 3
+                                     : row.method == "fcpw"         ? 4
+                                     : row.method == "ebgeom-batch" ? 5
+                                     : row.method == "ebgeom-tile"  ? 6
+                                                                    : 0];
     const bool float_peer = row.method == "embree" || row.method == "fcpw";
     check(row, ref_name, *out_ref, out, m, float_peer ? 1e-5 : rel_t,
           float_peer ? floor_f : floor_t);
@@ -552,16 +618,20 @@ void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
     std::printf("\n== %s, %s: %zu triangles, %zu vertices; %s %.1f ms; TriangleMesh %.1f ms\n",
                 mi.name.c_str(), run.precision.c_str(), mi.triangles, mi.vertices,
                 mi.generated ? "generate" : "parse", mi.parse_ms, mi.triangle_mesh_ms);
-    std::printf("   %zu uniform points in the box + 10%%, %d runs (median), %d threads\n", o.points,
-                o.reps, o.threads);
-    std::printf("%-8s %-7s %10s %9s %7s %12s %12s %7s %7s  %s\n", "method", "prec", "build ms",
+    if (o.grid > 0)
+      std::printf("   %zu^3 = %zu cell centres of the box + 10%%, %d runs (median), %d threads\n",
+                  o.grid, o.points, o.reps, o.threads);
+    else
+      std::printf("   %zu uniform points in the box + 10%%, %d runs (median), %d threads\n",
+                  o.points, o.reps, o.threads);
+    std::printf("%-12s %-7s %10s %9s %7s %12s %12s %7s %7s  %s\n", "method", "prec", "build ms",
                 "MB", "B/tri", "1-thr kq/s", (std::to_string(o.threads) + "-thr kq/s").c_str(),
                 "scaling", "paired", "note");
     for (const Row& r : run.rows) {
       const double q1 = qps(r.qps1), qt = qps(r.qpst);
       std::string note = r.compute == r.precision ? "" : r.compute;
       if (!r.note.empty()) note += (note.empty() ? "" : "; ") + r.note;
-      std::printf("%-8s %-7s %10.2f %9.2f %7.1f %12.1f %12.1f %7.2f %7.2f  %s\n", r.method.c_str(),
+      std::printf("%-12s %-7s %10.2f %9.2f %7.1f %12.1f %12.1f %7.2f %7.2f  %s\n", r.method.c_str(),
                   r.precision.c_str(), r.build_ms, double(r.memory) / 1e6,
                   double(r.memory) / double(std::max<std::size_t>(mi.triangles, 1)), q1 / 1e3,
                   qt / 1e3, qt / q1, paired_ratio(r.qpst, r.qps1), note.c_str());
@@ -571,10 +641,10 @@ void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
                 run.precision == "float" ? 1e-5 : 1e-9);
     for (const Row& r : run.rows) {
       if (r.is_reference) {
-        std::printf("  %-8s reference\n", r.method.c_str());
+        std::printf("  %-12s reference\n", r.method.c_str());
         continue;
       }
-      std::printf("  %-8s vs %-7s %7zu points: %zu |d| out of tolerance, %zu sign differences "
+      std::printf("  %-12s vs %-7s %7zu points: %zu |d| out of tolerance, %zu sign differences "
                   "(%.4f%%), max rel err %.2e, max abs err %.2e (%.2e of scale), %zu bitwise "
                   "equal\n",
                   r.method.c_str(), r.reference.c_str(), r.checked, r.distance_bad, r.sign_diff,
@@ -586,16 +656,18 @@ void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
                     "", r.reference.c_str(), r.sign_diff_ref_wins, r.method.c_str(),
                     r.sign_diff_peer_wins);
     }
-    const Row* eb = find(run, "ebgeom");
-    if (eb) {
-      std::printf("ratios ebgeom / peer (build and memory: < 1 is smaller; throughput: > 1 is "
-                  "faster):\n");
-      std::printf("  %-8s %9s %9s %12s %12s %14s %14s\n", "peer", "build", "memory", "1-thr q/s",
+    for (const char* name : {"ebgeom", "ebgeom-batch", "ebgeom-tile"}) {
+      const Row* eb = find(run, name);
+      if (!eb) continue;
+      std::printf("ratios %s / peer (build and memory: < 1 is smaller; throughput: > 1 is "
+                  "faster):\n",
+                  name);
+      std::printf("  %-12s %9s %9s %12s %12s %14s %14s\n", "peer", "build", "memory", "1-thr q/s",
                   (std::to_string(o.threads) + "-thr q/s").c_str(), "1-thr paired",
                   (std::to_string(o.threads) + "-thr paired").c_str());
       for (const Row& r : run.rows) {
         if (&r == eb) continue;
-        std::printf("  %-8s %9.2f %9.2f %12.1f %12.1f %14.1f %14.1f\n", r.method.c_str(),
+        std::printf("  %-12s %9.2f %9.2f %12.2f %12.2f %14.2f %14.2f\n", r.method.c_str(),
                     eb->build_ms / r.build_ms, double(eb->memory) / double(r.memory),
                     qps(eb->qps1) / qps(r.qps1), qps(eb->qpst) / qps(r.qpst),
                     paired_ratio(eb->qps1, r.qps1), paired_ratio(eb->qpst, r.qpst));
@@ -660,7 +732,9 @@ nlohmann::json to_json(const Options& o, const std::vector<PrecisionRun>& runs) 
       if (!r.note.empty()) m["note"] = r.note;
       jr["methods"].push_back(m);
     }
-    if (const Row* eb = find(run, "ebgeom")) {
+    for (const char* name : {"ebgeom", "ebgeom-batch", "ebgeom-tile"}) {
+      const Row* eb = find(run, name);
+      if (!eb) continue;
       nlohmann::json ratios;
       for (const Row& r : run.rows) {
         if (&r == eb) continue;
@@ -671,7 +745,7 @@ nlohmann::json to_json(const Options& o, const std::vector<PrecisionRun>& runs) 
                             {"qps_1_paired", paired_ratio(eb->qps1, r.qps1)},
                             {"qps_threads_paired", paired_ratio(eb->qpst, r.qpst)}};
       }
-      jr["ratios_ebgeom_over_peer"] = ratios;
+      jr[std::string("ratios_") + name + "_over_peer"] = ratios;
     }
     j["runs"].push_back(jr);
   }
@@ -683,8 +757,8 @@ int usage(const char* argv0) {
   std::fprintf(stderr,
                "usage: %s MESH | --generate N  [--points N=1000000] [--reps R=5]\n"
                "       [--precision float|double|both] [--threads T=2] [--check M=20000] "
-               "[--cgal-points K=100000] [--json]\n"
-               "       [--json-file PATH]\n",
+               "[--cgal-points K=100000] [--grid N]\n"
+               "       [--json] [--json-file PATH]\n",
                argv0);
   return 2;
 }
@@ -712,6 +786,9 @@ int main(int argc, char** argv) {
       o.json_file = v;
     } else if (a == "--cgal-points" && (v = next())) {
       o.cgal_points = std::max<std::size_t>(1, std::strtoull(v, nullptr, 10));
+    } else if (a == "--grid" && (v = next())) {
+      o.grid = std::strtoull(v, nullptr, 10);
+      if (o.grid == 0 || o.grid > 1024) return usage(argv[0]);
     } else if (a == "--generate" && (v = next())) {
       o.generate = std::strtoull(v, nullptr, 10);
     } else if (a == "--precision" && (v = next())) {
@@ -722,6 +799,7 @@ int main(int argc, char** argv) {
       return usage(argv[0]);
     }
   }
+  if (o.grid > 0) o.points = o.grid * o.grid * o.grid;
   if ((o.mesh.empty() == (o.generate == 0)) || o.points == 0) return usage(argv[0]);
   if (precision != "float" && precision != "double" && precision != "both") return usage(argv[0]);
   o.run_float = precision != "double";
