@@ -48,7 +48,8 @@ template <class T, int K, int W> struct BlockSearch {
                                        std::uint32_t& best) const noexcept {
     const std::uint32_t nb = (count + std::uint32_t(W) - 1) / std::uint32_t(W);
     for (std::uint32_t i = 0; i < nb; ++i) {
-      const LaneMin<T, W> lm = block_min<T, W, I>(blocks[first_block + i], p, b2);
+      const LaneMin<T, W> lm =
+          block_min_pruned<T, W, I>(blocks[first_block + i], p, b2, bvh::prune_limit(b2, slack));
       // No lane can win, or only tie with no best yet (as the brute force, which keeps the first
       // triangle strictly below the initial bound).
       if (lm.mask == 0 || !(lm.min < b2 || best != bvh::ChildRef::none)) continue;

@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 
+#include "ebgeom/core/aabb.hpp"
 #include "ebgeom/geom/closest_point_triangle.hpp"
 #include "test_support.hpp"
 
@@ -63,4 +65,45 @@ TYPED_TEST(TriBlockTest, BlockMinReportsOnlyBlocksWithinTheBound) {
   EXPECT_EQ(hit.min, best);
   EXPECT_EQ(hit.mask, 3u);
   EXPECT_EQ(block_min(blk, p, std::nextafter(best, T(0))).mask, 0u);
+}
+
+// block_min_pruned: mask 0 exactly when no lane's triangle box (computed independently here, with
+// Aabb) lies within the limit; otherwise block_min's answer, bit for bit.
+TYPED_TEST(TriBlockTest, BlockMinPrunedSkipsOnlyBlocksWithEveryTriangleBoxBeyondTheLimit) {
+  using T = TypeParam;
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto rnd = [&] { return Vec3<T>{T(u(rng)), T(u(rng)), T(u(rng))}; };
+  int skipped = 0, kept = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    TriBlock<T, 8> blk;
+    T box2 = std::numeric_limits<T>::infinity(); // nearest lane box
+    const Vec3<T> shift = rnd() * T(4);
+    for (int l = 0; l < 8; ++l) {
+      const Vec3<T> a = shift + rnd() * T(0.3), b = shift + rnd() * T(0.3),
+                    c = shift + rnd() * T(0.3);
+      blk.set(l, a, b, c);
+      Aabb<T> box;
+      box.extend(a), box.extend(b), box.extend(c);
+      box2 = std::min(box2, box.distance2(Vec3<T>{}));
+    }
+    const Vec3<T> p{};
+    T d2[8];
+    block_distance2(blk, p, d2);
+    const T b2 = *std::min_element(d2, d2 + 8) * T(u(rng) + 1.5); // sometimes below every lane
+    const T lim = T(u(rng) + 1.5) * box2;                         // on both sides of box2
+    const LaneMin<T, 8> got = block_min_pruned(blk, p, b2, lim);
+    if (box2 > lim) {
+      EXPECT_EQ(got.mask, 0u);
+      EXPECT_EQ(got.min, b2);
+      ++skipped;
+    } else {
+      const LaneMin<T, 8> want = block_min(blk, p, b2);
+      EXPECT_EQ(got.mask, want.mask);
+      EXPECT_EQ(got.min, want.min);
+      ++kept;
+    }
+  }
+  EXPECT_GT(skipped, 100);
+  EXPECT_GT(kept, 100);
 }
