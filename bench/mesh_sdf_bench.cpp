@@ -14,8 +14,10 @@
 // For the mesh: parse time (io::read_mesh) or generation time, TriangleMesh build time. For each
 // method: build time, memory, and query throughput (median of R runs) over N uniform random points
 // (fixed seed) in the mesh box grown by 10% of its extent on every side, on 1 and on T threads
-// (ebgeom::parallel_for, dynamic chunks). The first M points check every method's signed distance
-// against ebgeom's (or brute force's when MeshSdf is not built in). See docs/performance.md.
+// (ebgeom::parallel_for, dynamic chunks); one-thread passes are timed in CPU time of the thread
+// (robust to a loaded machine), T-thread passes in wall time. The first M points check every
+// method's signed distance against ebgeom's (or brute force's when MeshSdf is not built in). See
+// docs/performance.md.
 //
 // --grid N: the points are the N^3 cell centres of the same box (GridSpec::cells, x fastest)
 // instead of random ones, and ebgeom answers them three ways, all timed per point in the same
@@ -31,6 +33,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <functional>
 #include <limits>
 #include <malloc.h>
@@ -75,6 +78,26 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
+
+// CPU seconds of the calling thread: one-thread passes are timed with it, so that time the
+// thread spends waiting for a core of a loaded machine does not count (each method's pass runs
+// on the calling thread: ebgeom's with one thread too). Wall time where it is unavailable.
+double thread_seconds() {
+#if defined(CLOCK_THREAD_CPUTIME_ID)
+  timespec ts{};
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0)
+    return double(ts.tv_sec) + 1e-9 * ts.tv_nsec;
+#endif
+  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
+
+// Seconds taken by a pass on `threads` threads: thread CPU time for one, wall time for more.
+struct PassTimer {
+  int threads;
+  double t0 = threads <= 1 ? thread_seconds() : 0;
+  Clock::time_point w0 = Clock::now();
+  double seconds() const { return threads <= 1 ? thread_seconds() - t0 : ms_since(w0) * 1e-3; }
+};
 
 double median(std::vector<double> v) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -213,7 +236,7 @@ template <class T, class Query>
 Pass make_pass(Query query, const std::vector<Vec3<T>>& pts, std::size_t n, std::vector<T>& out) {
   out.assign(n, T(0));
   return [query, &pts, n, &out](int threads) {
-    const auto t0 = Clock::now();
+    const PassTimer timer{threads};
     if (threads <= 1) {
       for (std::size_t i = 0; i < n; ++i) out[i] = query(pts[i]);
     } else {
@@ -229,7 +252,7 @@ Pass make_pass(Query query, const std::vector<Vec3<T>>& pts, std::size_t n, std:
           },
           ex);
     }
-    return ms_since(t0) * 1e-3;
+    return timer.seconds();
   };
 }
 
@@ -369,7 +392,7 @@ template <class T> PrecisionRun run_precision(const Options& o) {
       std::vector<T>& out = outs[tile ? 6 : 5];
       out.assign(o.points, T(0));
       passes.push_back([s, tile, &pts, &out, grid](int threads) {
-        const auto t = Clock::now();
+        const PassTimer timer{threads};
         if (tile) {
           GridOptions opt;
           opt.exec.threads = threads;
@@ -380,7 +403,7 @@ template <class T> PrecisionRun run_precision(const Options& o) {
           ex.threads = threads;
           if (!evaluate(*s, Span<const Vec3<T>>(pts), Span<T>(out), ex)) std::abort();
         }
-        return ms_since(t) * 1e-3;
+        return timer.seconds();
       });
       run.rows.push_back(std::move(row));
     }
@@ -624,6 +647,10 @@ void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
     else
       std::printf("   %zu uniform points in the box + 10%%, %d runs (median), %d threads\n",
                   o.points, o.reps, o.threads);
+    std::printf("   1-thread rates from the thread's CPU time%s\n",
+                o.threads > 1
+                    ? (", " + std::to_string(o.threads) + "-thread rates from wall time").c_str()
+                    : "");
     std::printf("%-12s %-7s %10s %9s %7s %12s %12s %7s %7s  %s\n", "method", "prec", "build ms",
                 "MB", "B/tri", "1-thr kq/s", (std::to_string(o.threads) + "-thr kq/s").c_str(),
                 "scaling", "paired", "note");
