@@ -243,14 +243,14 @@ int main(int argc, char** argv) {
     opt.band = o.cells * h;
     std::printf("band grid %zux%zux%zu, band %.2f cells = %.5g\n", g.nx(), g.ny(), g.nz(), o.cells,
                 opt.band);
-    std::size_t blocks = 0;
+    std::size_t kept = 0;
     for (int threads : {1, o.threads}) {
       opt.exec.threads = threads;
       const double sp = median_time(o.reps, [&] {
         auto r = sample_grid_sparse(sdf, g, opt);
-        blocks = r ? r->block_count() : 0;
+        kept = r ? r->kept_tile_count() : 0;
       });
-      print_row("narrow band, sparse output (kept 8^3 blocks)", o.band, threads, sp);
+      print_row("narrow band, sparse output (kept 8^3 tiles)", o.band, threads, sp);
       std::vector<T> out(g.size());
       const double dn = median_time(o.reps, [&] { (void)sample_grid(sdf, g, Span<T>(out), opt); });
       print_row("narrow band, dense output", o.band, threads, dn);
@@ -262,7 +262,7 @@ int main(int argc, char** argv) {
           (void)sample_grid_sparse(sdf, g, opt);
         },
         o.threads);
-    std::printf("  kept blocks: %zu of %zu tiles\n", blocks,
+    std::printf("  kept tiles: %zu of %zu\n", kept,
                 ((g.nx() + 7) / 8) * ((g.ny() + 7) / 8) * ((g.nz() + 7) / 8));
 #if defined(EBGEOM_BENCH_HAVE_OPENVDB)
     openvdb::initialize();
@@ -293,15 +293,15 @@ int main(int argc, char** argv) {
     GridOptions opt;
     opt.band = o.cells * double(g.spacing().x);
     opt.exec.threads = o.threads;
-    std::size_t bytes = 0, blocks = 0;
+    std::size_t bytes = 0, kept = 0;
     const double t = median_time(std::max(1, o.reps / 2), [&] {
       auto r = sample_grid_sparse(sdf, g, opt);
       bytes = r ? r->memory_bytes() : 0;
-      blocks = r ? r->block_count() : 0;
+      kept = r ? r->kept_tile_count() : 0;
     });
     print_row("narrow band, sparse output", o.sparse, o.threads, t);
-    std::printf("  grid %zux%zux%zu: %zu kept blocks, %.1f MiB (a dense float array: %.1f MiB)\n",
-                g.nx(), g.ny(), g.nz(), blocks, double(bytes) / 1048576.0,
+    std::printf("  grid %zux%zux%zu: %zu kept tiles, %.1f MiB (a dense float array: %.1f MiB)\n",
+                g.nx(), g.ny(), g.nz(), kept, double(bytes) / 1048576.0,
                 double(g.size()) * sizeof(T) / 1048576.0);
   }
   return 0;

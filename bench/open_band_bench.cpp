@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
 // Narrow bands on an open mesh: the band of a winding sign (`fast-winding`, what `auto` picks on
-// an open mesh; far blocks signed by bounding the winding number, sdf/split_sign.hpp) against the
-// same band with the pseudonormal sign, in one process, methods interleaved in every repetition,
-// medians of wall and CPU times (CPU time is steadier on a shared machine; with --threads 1 it
-// is the one to compare). Sparse output (`sample_grid_sparse`, what `ebgeom sdf -o OUT.npz --band`
-// writes), float, the mesh's box grown by 10% of its largest extent per side, `--res` cells on
-// the longest axis, a band of `--cells` cells.
+// an open mesh; far boxes of tiles signed by bounding the winding number, sdf/split_sign.hpp)
+// against the same band with the pseudonormal sign, in one process, methods interleaved in every
+// repetition, medians of wall and CPU times (CPU time is steadier on a shared machine; with
+// --threads 1 it is the one to compare). Sparse output (`sample_grid_sparse`, what `ebgeom sdf -o
+// OUT.npz --band` writes), float, the mesh's box grown by 10% of its largest extent per side,
+// `--res` cells on the longest axis, a band of `--cells` cells.
 //
 //   cmake --preset bench && cmake --build --preset bench --target ebgeom_bench_open_band_bench
 //   build/bench/bench/ebgeom_bench_open_band_bench [--mesh ../shared/meshes/stanford-bunny.obj]
@@ -51,7 +51,7 @@ double cpu_seconds() {
 
 struct Run {
   double seconds = 0, cpu = 0;
-  std::size_t blocks = 0, tiles = 0, bytes = 0;
+  std::size_t kept = 0, tiles = 0, bytes = 0;
 };
 
 template <class S> Run run_band(const S& sdf, const GridSpec<T>& spec, const GridOptions& opt) {
@@ -65,7 +65,7 @@ template <class S> Run run_band(const S& sdf, const GridSpec<T>& spec, const Gri
     std::fprintf(stderr, "sample_grid_sparse: %s\n", g.error().what().c_str());
     std::exit(1);
   }
-  r.blocks = g->block_count();
+  r.kept = g->kept_tile_count();
   r.tiles = g->tiles[0] * g->tiles[1] * g->tiles[2];
   r.bytes = g->memory_bytes();
   return r;
@@ -156,7 +156,7 @@ int main(int argc, char** argv) {
     for (int m = 0; m < 3; ++m) {
       if (t[m].empty()) continue;
       std::printf("  %-20s median wall %8.3f s  cpu %8.3f s  kept %8zu of %9zu tiles  %8.1f MiB\n",
-                  names[m], median(t[m]), median(c[m]), last[m].blocks, last[m].tiles,
+                  names[m], median(t[m]), median(c[m]), last[m].kept, last[m].tiles,
                   double(last[m].bytes) / (1024.0 * 1024.0));
     }
     if (!t[0].empty() && !t[1].empty() && !t[2].empty())

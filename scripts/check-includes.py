@@ -45,6 +45,7 @@ UMBRELLA = "ebgeom.hpp"  # the whole library: may include anything
 # Forwarding headers left at a header's old path for one release: each holds exactly one include,
 # its new path, whatever the layers say; no library header may include an old path.
 FORWARDERS = {
+    "eval/grid_blocks.hpp": "eval/grid_tiles.hpp",
     "mesh/dcel_distance.hpp": "sdf/dcel_distance.hpp",
     "mesh/point_in_polygon.hpp": "geom/point_in_polygon.hpp",
     "mesh/polygon_geometry.hpp": "geom/polygon_geometry.hpp",

@@ -7,7 +7,7 @@
 
 #include "ebgeom/eval/evaluate.hpp"
 #include "ebgeom/eval/grid.hpp"
-#include "ebgeom/eval/grid_blocks.hpp"
 #include "ebgeom/eval/grid_spec.hpp"
+#include "ebgeom/eval/grid_tiles.hpp"
 #include "ebgeom/eval/sparse_grid.hpp"
 #include "ebgeom/eval/write_grid.hpp"

@@ -168,6 +168,14 @@ template <class T> void sparse_round_trip(Centering c) {
   EXPECT_EQ(double(band), double(g->band));
   EXPECT_EQ(m["tile"].at<std::int64_t>(0), std::int64_t(W));
   for (int a = 0; a < 3; ++a) EXPECT_EQ(m["dims"].at<std::uint64_t>(a), spec.dims[a]);
+  // The kept tiles' coordinates: member `tiles` (it was named `blocks` in 0.1).
+  EXPECT_EQ(m.count("blocks"), 0u);
+  ASSERT_EQ(m.count("tiles"), 1u);
+  const NpyArray& tiles = m["tiles"];
+  ASSERT_EQ(tiles.shape, (std::vector<std::size_t>{g->kept_tile_count(), 3}));
+  for (std::size_t b = 0; b < g->kept_tile_count(); ++b)
+    for (std::size_t a = 0; a < 3; ++a)
+      ASSERT_EQ(tiles.at<std::uint32_t>(3 * b + a), g->kept_tiles[b][a]) << b;
   std::size_t kept = 0, skipped = 0;
   for (std::size_t k = 0; k < spec.nz(); ++k)
     for (std::size_t j = 0; j < spec.ny(); ++j)

@@ -24,6 +24,7 @@ import itertools as _itertools
 import json as _json
 import math as _math
 import os as _os
+import warnings as _warnings
 import weakref as _weakref
 from dataclasses import dataclass as _dataclass
 from typing import Any, Dict, Optional, Sequence, Tuple, Union
@@ -583,8 +584,8 @@ class SparseGrid:
     tiles (512 values and 12 bytes each) plus 4 bytes per tile of the whole grid
     (``memory_bytes``).
 
-    - ``blocks`` (M, 3) uint32: tile coordinates (tx, ty, tz) of kept tile b, whose samples are
-      (8 tx + x, 8 ty + y, 8 tz + z);
+    - ``tiles`` (M, 3) uint32: tile coordinates (tx, ty, tz) of kept tile b, whose samples are
+      (8 tx + x, 8 ty + y, 8 tz + z); ``blocks``, its name in 0.1, is a deprecated alias;
     - ``values`` (M, 8, 8, 8): ``values[b, z, y, x]`` is S at that sample, exactly the dense
       grid's value; local samples past the grid's last sample hold +band;
     - ``tile_code`` (TZ, TY, TX) int32: the index b of each kept tile, or -1 (a skipped tile
@@ -596,7 +597,7 @@ class SparseGrid:
     writes .npz (the CLI's file, byte for byte) or .vdb (the CLI's OpenVDB level set).
 
     >>> band = ebgeom.sample_grid(sdf, res=2048, band=3, sparse=True)
-    >>> band.blocks.shape, band.memory_bytes          # kept tiles, bytes held
+    >>> band.tiles.shape, band.memory_bytes           # kept tiles, bytes held
     >>> band.save("bunny_band.npz")                   # = ebgeom sdf bunny.obj --res 2048 --band 3
     """
 
@@ -612,9 +613,16 @@ class SparseGrid:
         self.dims, self.centering, self.band = dims, centering, band
 
     @property
-    def blocks(self) -> np.ndarray:
+    def tiles(self) -> np.ndarray:
         """(M, 3) uint32 tile coordinates (tx, ty, tz) of the kept tiles, in Morton order."""
-        return self._impl.blocks
+        return self._impl.tiles
+
+    @property
+    def blocks(self) -> np.ndarray:
+        """Deprecated name of ``tiles`` (the .npz member is ``tiles`` too)."""
+        _warnings.warn("SparseGrid.blocks is deprecated; use SparseGrid.tiles",
+                       DeprecationWarning, stacklevel=2)
+        return self._impl.tiles
 
     @property
     def values(self) -> np.ndarray:
@@ -653,7 +661,7 @@ class SparseGrid:
 
     def __repr__(self) -> str:
         nx, ny, nz = self.dims
-        return (f"<ebgeom.SparseGrid {nx} x {ny} x {nz}, {len(self.blocks)} of "
+        return (f"<ebgeom.SparseGrid {nx} x {ny} x {nz}, {len(self.tiles)} of "
                 f"{self.tile_code.size} tiles kept, band {self.band:g}>")
 
 

@@ -43,7 +43,7 @@ class Sdf:
 
 class SparseGrid:
     precision: str
-    blocks: np.ndarray
+    tiles: np.ndarray
     values: np.ndarray
     tile_code: np.ndarray
     memory_bytes: int

@@ -700,7 +700,7 @@ py::dict sample_sparse_py(const Sdf& s, const std::vector<double>& box,
 template <class T> py::array to_dense_as(const SparseGrid<T>& g) {
   const GridSpec<T>& spec = g.spec;
   require_memory(bytes_of(spec.size(), sizeof(T)), grid_name(spec),
-                 "a dense copy of this band does not fit; read the kept tiles (blocks, values) "
+                 "a dense copy of this band does not fit; read the kept tiles (tiles, values) "
                  "instead");
   py::array_t<T> out({py::ssize_t(spec.nz()), py::ssize_t(spec.ny()), py::ssize_t(spec.nx())});
   T* o = out.mutable_data();
@@ -957,20 +957,20 @@ PYBIND11_MODULE(_ebgeom, m) {
 
   py::class_<Sparse>(m, "SparseGrid")
       .def_property_readonly("precision", [](const Sparse& s) { return s.d ? "double" : "float"; })
-      .def_property_readonly("blocks",
-                             [](const py::object& self) {
-                               return self.cast<const Sparse&>().visit([&](const auto& g) {
-                                 return view_of(
-                                     self, reinterpret_cast<const std::uint32_t*>(g.blocks.data()),
-                                     {py::ssize_t(g.blocks.size()), 3});
-                               });
-                             })
+      .def_property_readonly(
+          "tiles",
+          [](const py::object& self) {
+            return self.cast<const Sparse&>().visit([&](const auto& g) {
+              return view_of(self, reinterpret_cast<const std::uint32_t*>(g.kept_tiles.data()),
+                             {py::ssize_t(g.kept_tiles.size()), 3});
+            });
+          })
       .def_property_readonly(
           "values",
           [](const py::object& self) {
             return self.cast<const Sparse&>().visit([&](const auto& g) {
               const py::ssize_t W = grid_tile;
-              return view_of(self, g.values.data(), {py::ssize_t(g.blocks.size()), W, W, W});
+              return view_of(self, g.values.data(), {py::ssize_t(g.kept_tiles.size()), W, W, W});
             });
           })
       .def_property_readonly("tile_code",

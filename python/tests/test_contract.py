@@ -168,7 +168,7 @@ def test_no_leaks_over_1000_calls(ball, tmp_path):
         ball(p)
         ball.query(p)
         g = ebgeom.sample_grid(shape, res=12, band=1, sparse=True, threads=1)
-        g.values, g.blocks, g.tile_code, g.to_dense()
+        g.values, g.tiles, g.tile_code, g.to_dense()
         ebgeom.sample_grid(shape, res=12, threads=1)
         with pytest.raises(ValueError):
             ball(wrong)

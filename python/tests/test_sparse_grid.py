@@ -27,13 +27,13 @@ def npz_members(path):
 
 
 def dense_from_tiles(g):
-    """The dense (NZ, NY, NX) array rebuilt in NumPy from blocks, values and tile_code."""
+    """The dense (NZ, NY, NX) array rebuilt in NumPy from tiles, values and tile_code."""
     nx, ny, nz = g.dims
     tz, ty, tx = g.tile_code.shape
     out = np.empty((tz * 8, ty * 8, tx * 8), dtype=g.dtype)
     fill = np.where(g.tile_code == -1, -g.band, g.band).astype(g.dtype)
     out[...] = np.repeat(np.repeat(np.repeat(fill, 8, 0), 8, 1), 8, 2)
-    for b, (x, y, z) in enumerate(g.blocks):
+    for b, (x, y, z) in enumerate(g.tiles):
         assert g.tile_code[z, y, x] == b
         out[8 * z:8 * z + 8, 8 * y:8 * y + 8, 8 * x:8 * x + 8] = g.values[b]
     return out[:nz, :ny, :nx]
@@ -64,7 +64,8 @@ def test_sparse_npz_byte_for_byte_with_cli(tmp_path, cli, source_dir, shifted_sp
         assert mine.read_bytes() == ref.read_bytes(), src
         # every member against the object's own arrays and geometry
         z = npz_members(ref)
-        np.testing.assert_array_equal(z["blocks"], g.blocks)
+        assert "blocks" not in z  # the kept tiles' member is "tiles" ("blocks" in 0.1)
+        np.testing.assert_array_equal(z["tiles"], g.tiles)
         np.testing.assert_array_equal(z["values"], g.values)
         np.testing.assert_array_equal(z["tile_code"], g.tile_code)
         assert z["values"].dtype == g.values.dtype == g.dtype
@@ -120,7 +121,7 @@ def test_sparse_memory_proportional_to_kept_tiles():
     before = rss()
     g = ebgeom.sample_grid(s, res=res, band=2, sparse=True, threads=2)
     grown = rss() - before
-    m, tiles = len(g.blocks), g.tile_code.size
+    m, tiles = len(g.tiles), g.tile_code.size
     assert tiles == (res // 8) ** 3
     expected = 4 * tiles + m * (12 + 512 * 4)
     assert expected <= g.memory_bytes <= expected * 1.01 + 4096
@@ -129,7 +130,7 @@ def test_sparse_memory_proportional_to_kept_tiles():
     # the arrays are views of the grid's own memory: no copy per access, read-only
     a, b = g.values, g.values
     assert np.shares_memory(a, b) and a.ctypes.data == b.ctypes.data
-    assert not a.flags.writeable and not g.blocks.flags.writeable
+    assert not a.flags.writeable and not g.tiles.flags.writeable
     assert not g.tile_code.flags.writeable
     with pytest.raises(ValueError):
         a[0, 0, 0, 0] = 1
@@ -145,7 +146,7 @@ def test_sparse_threads_invariance():
     ref = ebgeom.sample_grid(sdf, res=64, band=2, sparse=True, threads=1)
     for t in (2, 3, 0):
         g = ebgeom.sample_grid(sdf, res=64, band=2, sparse=True, threads=t)
-        np.testing.assert_array_equal(g.blocks, ref.blocks)
+        np.testing.assert_array_equal(g.tiles, ref.tiles)
         np.testing.assert_array_equal(g.values, ref.values)
         np.testing.assert_array_equal(g.tile_code, ref.tile_code)
 
@@ -213,3 +214,11 @@ def test_dense_npz_byte_for_byte_with_cli(tmp_path, cli, shifted_sphere):
         z = npz_members(ref)
         np.testing.assert_array_equal(z["sdf"], g.values)
         assert tuple(z["origin"]) == g.origin and str(z["centering"]) == "node"
+
+
+def test_sparse_blocks_is_a_deprecated_alias_of_tiles():
+    g = ebgeom.sample_grid(ebgeom.sphere(1.0).compile("float"), res=24, band=2, sparse=True)
+    assert g.tiles.shape == (len(g.tiles), 3) and len(g.tiles) > 0
+    with pytest.warns(DeprecationWarning, match="SparseGrid.tiles"):
+        old = g.blocks
+    np.testing.assert_array_equal(old, g.tiles)

@@ -52,7 +52,7 @@ TEST(SlowHelpExamples, SdfBandExampleWorksOnItsMesh) {
   const auto j = nlohmann::json::parse(r.out);
   // a closed mesh: the pseudonormal sign, and the band skips most tiles
   EXPECT_EQ(j["sign_used"]["mode"], "pseudonormal") << j["sign_used"].dump();
-  EXPECT_LT(j["blocks"].get<double>(), 0.5 * j["tiles"][0].get<double>() *
-                                           j["tiles"][1].get<double>() *
-                                           j["tiles"][2].get<double>());
+  EXPECT_LT(j["kept_tiles"].get<double>(), 0.5 * j["tiles"][0].get<double>() *
+                                               j["tiles"][1].get<double>() *
+                                               j["tiles"][2].get<double>());
 }

@@ -60,7 +60,7 @@ void check_sparse_equals_dense(const std::string& dir, const std::string& input,
   const std::string dense_bytes = slurp(dir + "/d.npy");
   auto z = read_npz(dir + "/s.npz");
   const char* vt = sizeof(T) == 4 ? "<f4" : "<f8";
-  for (const char* k : {"dims", "tile", "origin", "spacing", "box", "band", "centering", "blocks",
+  for (const char* k : {"dims", "tile", "origin", "spacing", "box", "band", "centering", "tiles",
                         "tile_code", "values"})
     ASSERT_TRUE(z.count(k)) << k;
   ASSERT_EQ(z["dims"].descr, "<u8");
@@ -90,28 +90,29 @@ void check_sparse_equals_dense(const std::string& dir, const std::string& input,
 
   const std::size_t tx = (nx + 7) / 8, ty = (ny + 7) / 8, tz = (nz + 7) / 8;
   const NpyArray& code = z["tile_code"];
-  const NpyArray& blocks = z["blocks"];
+  EXPECT_FALSE(z.count("blocks")) << "the kept tiles' member is named tiles (blocks in 0.1)";
+  const NpyArray& kept = z["tiles"];
   const NpyArray& values = z["values"];
   ASSERT_EQ(code.descr, "<i4");
   ASSERT_EQ(code.shape, (std::vector<std::size_t>{tz, ty, tx}));
-  ASSERT_EQ(blocks.descr, "<u4");
-  const std::size_t m = blocks.shape.at(0);
-  ASSERT_EQ(blocks.shape, (std::vector<std::size_t>{m, 3}));
+  ASSERT_EQ(kept.descr, "<u4");
+  const std::size_t m = kept.shape.at(0);
+  ASSERT_EQ(kept.shape, (std::vector<std::size_t>{m, 3}));
   ASSERT_EQ(values.descr, vt);
   ASSERT_EQ(values.shape, (std::vector<std::size_t>{m, 8, 8, 8}));
   ASSERT_EQ(values.data.size(), m * 512 * sizeof(T));
-  EXPECT_EQ(js["blocks"].get<std::size_t>(), m);
+  EXPECT_EQ(js["kept_tiles"].get<std::size_t>(), m);
+  EXPECT_EQ(js["blocks"].get<std::size_t>(), m); // its 0.1 name, kept for one release
   EXPECT_EQ(js["tiles"], nlohmann::json::array({tx, ty, tz}));
   EXPECT_EQ(js["format"], "sparse");
   EXPECT_EQ(js["output_bytes"].get<std::size_t>(), slurp(dir + "/s.npz").size());
   EXPECT_GT(m, 0u);
   EXPECT_LT(m, tx * ty * tz) << "nothing was skipped: the test would not test skipping";
-  // Each block sits where tile_code points to it, once.
+  // Each kept tile sits where tile_code points to it, once.
   std::vector<int> seen(m, 0);
   for (std::size_t b = 0; b < m; ++b) {
-    const std::size_t bx = blocks.at<std::uint32_t>(3 * b),
-                      by = blocks.at<std::uint32_t>(3 * b + 1),
-                      bz = blocks.at<std::uint32_t>(3 * b + 2);
+    const std::size_t bx = kept.at<std::uint32_t>(3 * b), by = kept.at<std::uint32_t>(3 * b + 1),
+                      bz = kept.at<std::uint32_t>(3 * b + 2);
     ASSERT_TRUE(bx < tx && by < ty && bz < tz);
     EXPECT_EQ(code.at<std::int32_t>(bx + tx * (by + ty * bz)), std::int32_t(b));
   }
@@ -123,7 +124,7 @@ void check_sparse_equals_dense(const std::string& dir, const std::string& input,
       for (std::size_t i = 0; i < tx * 8; ++i) {
         const std::int32_t c = code.at<std::int32_t>(i / 8 + tx * (j / 8 + ty * (k / 8)));
         ASSERT_TRUE(c >= -2 && c < std::int32_t(m)) << c;
-        // values[b, z, y, x] is sample blocks[b] * 8 + (x, y, z).
+        // values[b, z, y, x] is sample tiles[b] * 8 + (x, y, z).
         const std::size_t at =
             c >= 0 ? (std::size_t(c) * 512 + i % 8 + 8 * (j % 8 + 8 * (k % 8))) : 0;
         if (c >= 0) ++seen[std::size_t(c)];
@@ -241,17 +242,17 @@ TEST(SparseNpz, GridTooLargeForADenseArrayIsWrittenSparse) {
   auto z = read_npz(dir + "/x.npz");
   EXPECT_EQ(z["dims"].at<std::uint64_t>(2), n);
   const NpyArray& code = z["tile_code"];
-  const std::size_t t = n / 8, m = z["blocks"].shape.at(0);
+  const std::size_t t = n / 8, m = z["tiles"].shape.at(0);
   ASSERT_EQ(code.shape, (std::vector<std::size_t>{t, t, t}));
-  EXPECT_EQ(j["blocks"].get<std::size_t>(), m);
+  EXPECT_EQ(j["kept_tiles"].get<std::size_t>(), m);
   // Kept samples are the sphere's distance (clamped to the band); skipped tiles have its sign.
   const double h = 2.0 / double(n), band = z["band"].at<double>(0);
   EXPECT_DOUBLE_EQ(band, 2 * h);
   for (std::size_t b = 0; b < m; ++b)
     for (int s = 0; s < 512; s += 37) {
-      const std::size_t i = z["blocks"].at<std::uint32_t>(3 * b) * 8 + std::size_t(s % 8);
-      const std::size_t jj = z["blocks"].at<std::uint32_t>(3 * b + 1) * 8 + std::size_t(s / 8 % 8);
-      const std::size_t k = z["blocks"].at<std::uint32_t>(3 * b + 2) * 8 + std::size_t(s / 64);
+      const std::size_t i = z["tiles"].at<std::uint32_t>(3 * b) * 8 + std::size_t(s % 8);
+      const std::size_t jj = z["tiles"].at<std::uint32_t>(3 * b + 1) * 8 + std::size_t(s / 8 % 8);
+      const std::size_t k = z["tiles"].at<std::uint32_t>(3 * b + 2) * 8 + std::size_t(s / 64);
       const double x = -1 + (double(i) + 0.5) * h - 0.1, y = -1 + (double(jj) + 0.5) * h,
                    zc = -1 + (double(k) + 0.5) * h;
       const double d = std::sqrt(x * x + y * y + zc * zc) - 0.02;

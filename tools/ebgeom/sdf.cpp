@@ -137,7 +137,7 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
   const double t4 = now_s();
   const int threads = resolve_threads(gopt.exec);
   const std::size_t tile_count = grid.sparse.tile_code.size();
-  const std::size_t kept = grid.sparse.block_count();
+  const std::size_t kept = grid.sparse.kept_tile_count();
 
   if (o.json) {
     Json j = grid_job_json(o, in, spec, gopt.band);
@@ -171,7 +171,8 @@ template <class T> int run_sdf_as(const SdfOptions& o) {
       const auto& g = grid.sparse;
       j["format"] = vdb ? "openvdb" : "sparse";
       j["tiles"] = {g.tiles[0], g.tiles[1], g.tiles[2]};
-      j["blocks"] = kept;
+      j["kept_tiles"] = kept;
+      j["blocks"] = kept; // the name of `kept_tiles` in 0.1, kept for one release
       j["sparse_bytes"] = g.memory_bytes();
       j["dense_bytes"] = dense_bytes;
       j["output_bytes"] = grid.file_bytes;

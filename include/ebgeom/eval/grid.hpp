@@ -5,10 +5,9 @@
 /// Dense SDF grids: `sample_grid(sdf, spec, out, GridOptions)` fills a dense array with S at every
 /// sample of a `GridSpec`, and `sample_grid_box` fills any sub-box (`GridRange`) of it with the
 /// same values (for MPI ranks and AMReX/Chombo boxes). Work goes by 8^3 tiles in Morton order,
-/// threads over tiles. SDFs with a bounded query search a narrow band only within the band (and,
-/// optionally, within a neighbour's |S| plus their distance); a narrow band skips, through an
-/// octree over the tiles, every block proven farther than the band from the surface (see
-/// `grid_blocks.hpp`).
+/// threads over tiles. SDFs with a bounded query search a narrow band only within the band; a
+/// narrow band skips, through an octree over the tiles, every box of tiles proven farther than the
+/// band from the surface (see `grid_tiles.hpp`).
 ///
 /// Memory layout of every grid array in ebgeom: **x fastest**, then y, then z:
 /// `out[i + nx * (j + ny * k)]` is the sample `(i, j, k)`. Seen as a C-order array its shape is
@@ -28,8 +27,8 @@
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/eval/evaluate.hpp"
-#include "ebgeom/eval/grid_blocks.hpp"
 #include "ebgeom/eval/grid_spec.hpp"
+#include "ebgeom/eval/grid_tiles.hpp"
 #include "ebgeom/sdf/concepts.hpp"
 
 namespace ebgeom {
@@ -40,10 +39,10 @@ namespace ebgeom {
 ///
 /// - Dense (`opt.band == 0`): `out[...] = sdf(spec.point(i, j, k))`, bit for bit.
 /// - Narrow band (`opt.band > 0`): samples with |S| <= band get S bit for bit; the others get
-///   `opt.outside` (±band by default) with the sign of S. For `exact` and `bound` SDFs, blocks
+///   `opt.outside` (±band by default) with the sign of S. For `exact` and `bound` SDFs, tiles
 ///   proven farther than the band are not evaluated, so the work follows the surface area; so
 ///   are they for `implicit` SDFs with a split sign (`has_split_sign_v`: `SignedMeshSdf` with a
-///   winding sign), whose far blocks are signed by proof, each sample as the dense grid signs it.
+///   winding sign), whose far tiles are signed by proof, each sample as the dense grid signs it.
 ///   Far samples' signs are decided from their neighbours when the band is at least the sample
 ///   spacing (exact for closed surfaces; a sign is the same as per-point evaluation's wherever
 ///   S's sign is well defined, i.e. not for open meshes).
@@ -67,9 +66,9 @@ Result<Ok> sample_grid_box(const S& sdf, const GridSpec<sdf_scalar_t<S>>& spec,
 
   const detail::GridFrame<T> f(spec);
   const detail::TileParams<T> prm = detail::tile_params(sdf, spec, opt);
-  const bool skip = detail::skips_far_blocks(sdf, prm);
+  const bool skip = detail::skips_far_tiles(sdf, prm);
   detail::GridPlan<T> plan = detail::plan_grid(sdf, f, range, prm, skip, opt.exec);
-  // Skipped blocks become fill jobs, one per tile, so threads share them evenly.
+  // Skipped boxes of tiles become fill jobs, one per tile, so threads share them evenly.
   for (const auto& s : plan.skipped)
     for (std::size_t k = s.a[2]; k < s.b[2]; ++k)
       for (std::size_t j = s.a[1]; j < s.b[1]; ++j)

@@ -147,7 +147,8 @@ struct GridRange {
 enum class BandFill : std::uint8_t {
   clamp,      ///< ±band with the sign of S (as OpenVDB level sets); the default
   lower_bound ///< a value v with the sign of S and band <= |v| <= |S| (up to rounding): where S
-              ///< was evaluated, S itself; in skipped blocks |S(c)| - |p - c| from the block centre
+              ///< was evaluated, S itself; in skipped boxes of tiles |S(c)| - |p - c| from the
+              ///< box's centre c
 };
 
 /// How the exact values of a grid are searched for (never changes them).
@@ -171,7 +172,7 @@ struct GridOptions {
   ExecOptions exec{};
   /// Narrow band half-width in length units; 0 (default) = dense exact everywhere. When > 0:
   /// samples with |S| <= band get the value S; the others get what `outside` says. For `exact`
-  /// and `bound` SDFs an octree over the grid's tiles skips blocks proven to lie farther than
+  /// and `bound` SDFs an octree over the grid's tiles skips tiles proven to lie farther than
   /// `band` from the surface, so the work follows the surface area; `implicit` SDFs are evaluated
   /// everywhere.
   double band = 0;
@@ -191,7 +192,7 @@ inline std::uint64_t morton3(std::uint32_t x, std::uint32_t y, std::uint32_t z) 
 }
 } // namespace detail
 
-/// Side of the tiles (blocks) grid samplers process and sparse grids store (samples per axis).
+/// Side of the tiles grid samplers process and sparse grids store (samples per axis).
 inline constexpr std::size_t grid_tile = 8;
 
 } // namespace ebgeom

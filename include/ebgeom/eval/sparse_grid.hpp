@@ -19,23 +19,26 @@
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/eval/evaluate.hpp"
-#include "ebgeom/eval/grid_blocks.hpp"
 #include "ebgeom/eval/grid_spec.hpp"
+#include "ebgeom/eval/grid_tiles.hpp"
 #include "ebgeom/sdf/concepts.hpp"
 
 namespace ebgeom {
 
 /// A narrow-band grid stored by 8^3 tiles (`grid_tile`). Plain data.
 ///
-/// - `blocks[b]`: tile coordinates of kept block `b` (samples `blocks[b][a] * 8 + 0..7` on axis
-///   a), in Morton order; its values are `values[b * 512 + x + 8 * (y + 8 * z)]` for local sample
-///   (x, y, z), each exactly what the dense `sample_grid` gives there. Local samples beyond the
-///   grid's last sample (partial tiles) hold +band.
-/// - `tile_code[tx + tiles[0] * (ty + tiles[1] * tz)]`: the block index (>= 0) of a kept tile,
+/// - `kept_tiles[b]`: tile coordinates of kept tile `b` (samples `kept_tiles[b][a] * 8 + 0..7` on
+///   axis a), in Morton order; its values are `values[b * 512 + x + 8 * (y + 8 * z)]` for local
+///   sample (x, y, z), each exactly what the dense `sample_grid` gives there. Local samples beyond
+///   the grid's last sample (partial tiles) hold +band.
+/// - `tiles`: the number of tiles on each axis, TX = ceil(NX / 8), TY, TZ;
+/// - `tile_code[tx + tiles[0] * (ty + tiles[1] * tz)]`: the index b (>= 0) of a kept tile,
 ///   `inside` or `outside` for a tile proven farther than the band from the surface.
 /// - `value(i, j, k)`: any sample; ±band in skipped tiles (`BandFill::clamp`).
 ///
-/// Memory: 4 B per tile plus 512 values and 12 B per kept block (`memory_bytes()`).
+/// Memory: 4 B per tile plus 512 values and 12 B per kept tile (`memory_bytes()`).
+///
+/// In 0.1, `kept_tiles` was named `blocks` and `kept_tile_count()` `block_count()`.
 template <class T> struct SparseGrid {
   using scalar_type = T;
   static constexpr std::int32_t inside = -1;  ///< skipped tile, S < 0 everywhere in it
@@ -43,12 +46,17 @@ template <class T> struct SparseGrid {
 
   GridSpec<T> spec;
   T band = 0;
-  std::array<std::size_t, 3> tiles{{0, 0, 0}};
-  std::vector<std::array<std::uint32_t, 3>> blocks;
+  std::array<std::size_t, 3> tiles{{0, 0, 0}}; ///< tiles per axis
+  std::vector<std::array<std::uint32_t, 3>> kept_tiles;
   std::vector<T> values;
   std::vector<std::int32_t> tile_code;
 
-  std::size_t block_count() const noexcept { return blocks.size(); }
+  /// Number of kept tiles, M.
+  std::size_t kept_tile_count() const noexcept { return kept_tiles.size(); }
+  [[deprecated("SparseGrid::block_count is now kept_tile_count")]] std::size_t
+  block_count() const noexcept {
+    return kept_tiles.size();
+  }
   /// Code of the tile holding sample (i, j, k).
   std::int32_t code(std::size_t i, std::size_t j, std::size_t k) const noexcept {
     const std::size_t W = grid_tile;
@@ -63,7 +71,7 @@ template <class T> struct SparseGrid {
   }
   /// Heap bytes held (capacity of the three arrays).
   std::size_t memory_bytes() const noexcept {
-    return blocks.capacity() * sizeof(blocks[0]) + values.capacity() * sizeof(T) +
+    return kept_tiles.capacity() * sizeof(kept_tiles[0]) + values.capacity() * sizeof(T) +
            tile_code.capacity() * sizeof(std::int32_t);
   }
 };
@@ -91,7 +99,7 @@ sample_grid_sparse(const S& sdf, const GridSpec<sdf_scalar_t<S>>& spec, const Gr
 
   const detail::GridFrame<T> f(spec);
   const detail::TileParams<T> prm = detail::tile_params(sdf, spec, opt);
-  const bool skip = detail::skips_far_blocks(sdf, prm);
+  const bool skip = detail::skips_far_tiles(sdf, prm);
   detail::GridPlan<T> plan = detail::plan_grid(sdf, f, all, prm, skip, opt.exec);
 
   SparseGrid<T> g;
@@ -107,11 +115,11 @@ sample_grid_sparse(const S& sdf, const GridSpec<sdf_scalar_t<S>>& spec, const Gr
           g.tile_code[i + f.tiles[0] * (j + f.tiles[1] * k)] = c;
   }
   const std::size_t n = plan.eval.size();
-  g.blocks.resize(n);
+  g.kept_tiles.resize(n);
   g.values.assign(n * W * W * W, prm.band);
   for (std::size_t b = 0; b < n; ++b) {
     const auto& t = plan.eval[b].tile;
-    g.blocks[b] = t;
+    g.kept_tiles[b] = t;
     g.tile_code[t[0] + f.tiles[0] * (t[1] + f.tiles[1] * std::size_t(t[2]))] = std::int32_t(b);
   }
   std::atomic<std::size_t> done{0};

@@ -241,7 +241,7 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
   }
 
   /// Samples [a, b) of the job's tile; `parent` lists the candidate leaves of an
-  /// enclosing block (nullptr: the whole BVH).
+  /// enclosing octant (nullptr: the whole BVH).
   EBGEOM_FORCE_INLINE void solve_lattice_inline(LatticeJob& job,
                                                 const std::array<std::size_t, 3>& a,
                                                 const std::array<std::size_t, 3>& b,

@@ -277,7 +277,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
     return side > 0 ? Sign::negative : side < 0 ? Sign::positive : Sign::unknown;
   }
 
-  /// Values at a block of lattice samples, bit for bit `(*this)(pts[l])`: the distances of
+  /// Values at a tile of lattice samples, bit for bit `(*this)(pts[l])`: the distances of
   /// `MeshSdf::eval_lattice`, then the sign of the mode per sample (the fast winding sign in
   /// packets of nearby samples, `signs_at`).
   void eval_lattice(Span<const Vec3<T>> pts, const std::array<std::size_t, 3>& dims,

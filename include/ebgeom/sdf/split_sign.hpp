@@ -6,8 +6,8 @@
 /// apart from it (a winding number, or no sign at all), S(p) = -d where d > 0 and the sign is
 /// negative, else d. Grid samplers use it to keep narrow bands fast for SDFs whose sign cannot
 /// be propagated between far samples (`SdfKind::implicit`, e.g. a winding sign on an open mesh):
-/// blocks proven farther than the band from the surface by the distance (1-Lipschitz) are signed
-/// by `sign_over` without any distance search. `SignedMeshSdf` implements it.
+/// boxes of samples proven farther than the band from the surface by the distance (1-Lipschitz) are
+/// signed by `sign_over` without any distance search. `SignedMeshSdf` implements it.
 
 #include <cstdint>
 #include <type_traits>

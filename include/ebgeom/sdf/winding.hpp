@@ -18,7 +18,8 @@
 /// - `winding_range(mesh, box)` and `FastWindingNumber::range_over(box)`: an interval holding
 ///   every value the exact sum or the fast evaluation computes at any point of a box (rounding
 ///   included), from the value at the box's centre and bounds on each term's gradient. Grid
-///   samplers use it to sign whole blocks far from the surface at once (`WindingRange::side`).
+///   samplers use it to sign whole boxes of samples far from the surface at once
+///   (`WindingRange::side`).
 
 #include <algorithm>
 #include <cmath>

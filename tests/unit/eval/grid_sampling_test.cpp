@@ -235,17 +235,17 @@ TYPED_TEST(GridSamplingTest, SparseEqualsDenseBand) {
     auto check = [&](const auto& s) {
       const auto dense = sampled(s, g, opt);
       const auto sp = sample_grid_sparse(s, g, opt).value();
-      EXPECT_GT(sp.block_count(), 0u);
-      EXPECT_LT(sp.block_count(), sp.tile_code.size()); // something was skipped
-      EXPECT_EQ(sp.values.size(), sp.block_count() * 512);
-      std::size_t in_blocks = 0;
+      EXPECT_GT(sp.kept_tile_count(), 0u);
+      EXPECT_LT(sp.kept_tile_count(), sp.tile_code.size()); // something was skipped
+      EXPECT_EQ(sp.values.size(), sp.kept_tile_count() * 512);
+      std::size_t in_kept = 0;
       for (std::size_t k = 0; k < g.nz(); ++k)
         for (std::size_t j = 0; j < g.ny(); ++j)
           for (std::size_t i = 0; i < g.nx(); ++i) {
             ASSERT_EQ(sp.value(i, j, k), dense[g.index(i, j, k)]) << i << " " << j << " " << k;
-            in_blocks += sp.code(i, j, k) >= 0;
+            in_kept += sp.code(i, j, k) >= 0;
           }
-      // Every sample inside the band lies in a kept block.
+      // Every sample inside the band lies in a kept tile.
       const auto ref = pointwise(s, g);
       for (std::size_t k = 0; k < g.nz(); ++k)
         for (std::size_t j = 0; j < g.ny(); ++j)
@@ -253,7 +253,7 @@ TYPED_TEST(GridSamplingTest, SparseEqualsDenseBand) {
             if (std::abs(ref[g.index(i, j, k)]) <= T(opt.band)) {
               ASSERT_GE(sp.code(i, j, k), 0);
             }
-      EXPECT_GT(in_blocks, 0u);
+      EXPECT_GT(in_kept, 0u);
       EXPECT_GT(sp.memory_bytes(), sp.values.size() * sizeof(T));
     };
     check(sdf);
@@ -263,21 +263,21 @@ TYPED_TEST(GridSamplingTest, SparseEqualsDenseBand) {
   EXPECT_EQ(sample_grid_sparse(sdf, g, opt).error().code, ErrorCode::invalid_argument); // band 0
 }
 
-TYPED_TEST(GridSamplingTest, SparseBlocksAreInMortonOrderAndCoverBand) {
+TYPED_TEST(GridSamplingTest, SparseTilesAreInMortonOrderAndCoverBand) {
   using T = TypeParam;
   const auto sdf = icosphere_sdf<T>();
   const auto g = GridSpec<T>::cells(Aabb<T>({T(-1), T(-1), T(-1)}, {T(1), T(1), T(1)}), 128);
   GridOptions opt;
   opt.band = 0.03;
   const auto sp = sample_grid_sparse(sdf, g, opt).value();
-  for (std::size_t b = 1; b < sp.blocks.size(); ++b) {
-    const auto& p = sp.blocks[b - 1];
-    const auto& q = sp.blocks[b];
+  for (std::size_t b = 1; b < sp.kept_tiles.size(); ++b) {
+    const auto& p = sp.kept_tiles[b - 1];
+    const auto& q = sp.kept_tiles[b];
     ASSERT_LT(detail::morton3(p[0], p[1], p[2]), detail::morton3(q[0], q[1], q[2]));
   }
   // The centre of the sphere is inside, a corner outside.
   EXPECT_EQ(sp.value(64, 64, 64), -T(0.03));
   EXPECT_EQ(sp.value(0, 0, 0), T(0.03));
-  // Work follows the surface: far fewer blocks than tiles.
-  EXPECT_LT(sp.block_count() * 2, sp.tile_code.size());
+  // Work follows the surface: far fewer kept tiles than tiles.
+  EXPECT_LT(sp.kept_tile_count() * 2, sp.tile_code.size());
 }

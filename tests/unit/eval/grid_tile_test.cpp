@@ -56,8 +56,8 @@ TYPED_TEST(GridTileTest, MeshSdfHasLatticeEval) {
   EXPECT_EQ(GridOptions{}.search, GridSearch::tile);
 }
 
-// Direct calls on blocks of several shapes, including far from the mesh (long candidate lists
-// that split by octants) and blocks straddling the surface.
+// Direct calls on lattice tiles of several shapes, including far from the mesh (long candidate
+// lists that split by octants) and tiles straddling the surface.
 TYPED_TEST(GridTileTest, EvalLatticeEqualsPerPoint) {
   using T = TypeParam;
   const MeshSdf<T> sdf = fine_torus<T>();

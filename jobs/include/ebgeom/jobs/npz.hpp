@@ -42,10 +42,11 @@ Result<std::uint64_t> write_npz(const std::string& path, const std::vector<NpzMe
                                 const NpzOptions& opt = {});
 
 /// The `.npz` of a narrow-band grid (docs/cli.md, "Sparse output"):
-///  - `blocks` (M, 3) uint32: tile coordinates (tx, ty, tz) of kept tile b;
+///  - `tiles` (M, 3) uint32: tile coordinates (tx, ty, tz) of kept tile b, from
+///    `SparseGrid::kept_tiles` (the member was named `blocks` in 0.1);
 ///  - `values` (M, 8, 8, 8) of T: `values[b, z, y, x]` is sample (8 tx + x, 8 ty + y, 8 tz + z);
 ///    local samples past the grid's last sample hold +band;
-///  - `tile_code` (TZ, TY, TX) int32: the block index (>= 0) of each tile, or -1 (skipped, every
+///  - `tile_code` (TZ, TY, TX) int32: the index b (>= 0) of each kept tile, or -1 (skipped, every
 ///    sample -band: inside) or -2 (skipped, +band: outside);
 ///  - `dims` (3,) uint64 [NX, NY, NZ]; `tile` () int64 = 8; `origin`, `spacing` (3,) float64
 ///    (x, y, z); `box` (2, 3) float64 (lo, hi); `band` () of T (the fill value of skipped tiles);
@@ -53,7 +54,7 @@ Result<std::uint64_t> write_npz(const std::string& path, const std::vector<NpzMe
 template <class T>
 Result<std::uint64_t> write_sparse_npz(const std::string& path, const SparseGrid<T>& g,
                                        const NpzOptions& opt = {}) {
-  static_assert(sizeof(g.blocks[0]) == 3 * sizeof(std::uint32_t), "blocks must be packed");
+  static_assert(sizeof(g.kept_tiles[0]) == 3 * sizeof(std::uint32_t), "tiles must be packed");
   const bool le = detail::host_is_little_endian();
   const std::string bo(1, le ? '<' : '>');
   const std::string vt = npy_descr(sizeof(T) == 4 ? DType::float32 : DType::float64);
@@ -73,7 +74,7 @@ Result<std::uint64_t> write_sparse_npz(const std::string& path, const SparseGrid
     const char unit[4] = {le ? c : '\0', '\0', '\0', le ? '\0' : c};
     centring.append(unit, 4);
   }
-  const std::size_t m = g.blocks.size();
+  const std::size_t m = g.kept_tiles.size();
   using Shape = std::vector<std::size_t>;
   const std::vector<NpzMember> members = {
       {"dims", npy_header(bo + "u8", Shape{3}), dims, sizeof dims},
@@ -84,8 +85,8 @@ Result<std::uint64_t> write_sparse_npz(const std::string& path, const SparseGrid
       {"band", npy_header(vt, Shape{}), &g.band, sizeof(T)},
       {"centering", npy_header(bo + "U" + std::to_string(text.size()), Shape{}), centring.data(),
        centring.size()},
-      {"blocks", npy_header(bo + "u4", Shape{m, 3}), g.blocks.data(),
-       std::uint64_t(m) * sizeof(g.blocks[0])},
+      {"tiles", npy_header(bo + "u4", Shape{m, 3}), g.kept_tiles.data(),
+       std::uint64_t(m) * sizeof(g.kept_tiles[0])},
       {"tile_code", npy_header(bo + "i4", Shape{g.tiles[2], g.tiles[1], g.tiles[0]}),
        g.tile_code.data(), std::uint64_t(g.tile_code.size()) * sizeof(std::int32_t)},
       {"values", npy_header(vt, Shape{m, W, W, W}), g.values.data(),
