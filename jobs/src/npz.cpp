@@ -39,7 +39,7 @@ constexpr std::uint32_t unix_file_0644 = 0100644u << 16; // external attributes,
 Result<std::uint64_t> write_npz(const std::string& path, const std::vector<NpzMember>& members,
                                 const NpzOptions& opt) {
   const bool always = opt.zip64 == Zip64::always;
-  detail::AtomicFile f(path);
+  AtomicFile f(path);
   if (!f.is_open()) return f.open_error();
   auto& os = f.stream();
   std::uint64_t at = 0;

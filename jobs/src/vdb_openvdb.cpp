@@ -96,7 +96,7 @@ Result<std::uint64_t> write_vdb_as(const std::string& path, const SparseGrid<T>&
             }
       }
 
-  ebgeom::detail::AtomicFile f(path);
+  ebgeom::AtomicFile f(path);
   if (!f.is_open()) return f.open_error();
   try {
     openvdb::GridPtrVec grids{grid};

@@ -203,7 +203,7 @@ template <class T> int run(const SdfOptions& o, const World& w) {
         sidecar = std::make_unique<OutputGroup>();
         const std::string side = raw_sidecar_path(o.output);
         const std::string base = std::filesystem::path(o.output).filename().string();
-        detail::AtomicFile f(side);
+        AtomicFile f(side);
         const std::string js = raw_sidecar_json(spec, base, wopt);
         if (!f.is_open()) {
           st = {scene::exit_output, f.open_error().what()};

@@ -49,7 +49,7 @@ int run_convert(const ConvertOptions& o) {
   if (!bytes)
     fail(exit_input, o.input + ": cannot be written as " + io::to_string(w.format) + ": " +
                          bytes.error().what());
-  ebgeom::detail::AtomicFile f(o.output);
+  ebgeom::AtomicFile f(o.output);
   if (!f.is_open()) fail(exit_output, f.open_error().what());
   f.stream().write(bytes->data(), std::streamsize(bytes->size()));
   if (auto ok = f.close(); !ok) fail(exit_output, ok.error().what());

@@ -232,7 +232,7 @@ PngInfo write_png_slice(const std::string& path, const SliceData& s) {
       {"ebgeom:colour_max", number(m_out)},
       {"ebgeom:scale_bar", scale}};
 
-  ebgeom::detail::AtomicFile file(path);
+  ebgeom::AtomicFile file(path);
   if (!file.is_open()) fail(exit_output, file.open_error().what());
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;

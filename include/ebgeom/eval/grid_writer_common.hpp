@@ -67,14 +67,17 @@ inline std::string raw_sidecar_path(const std::string& raw_path) {
   return raw_path.substr(0, dot) + ".json";
 }
 
-namespace detail {
-
+/// True on a little-endian host (the byte order the grid writers record in their headers).
 inline bool host_is_little_endian() noexcept {
   const std::uint16_t one = 1;
   unsigned char b;
   std::memcpy(&b, &one, 1);
   return b == 1;
 }
+
+namespace detail {
+
+using ebgeom::host_is_little_endian; // its former, internal name
 
 /// Streams `values` converted to `dtype`, in chunks, in host byte order.
 template <class T> void write_values(std::ostream& os, Span<const T> values, DType dtype) {

@@ -55,7 +55,7 @@ template <class T>
 Result<std::uint64_t> write_sparse_npz(const std::string& path, const SparseGrid<T>& g,
                                        const NpzOptions& opt = {}) {
   static_assert(sizeof(g.kept_tiles[0]) == 3 * sizeof(std::uint32_t), "tiles must be packed");
-  const bool le = detail::host_is_little_endian();
+  const bool le = host_is_little_endian();
   const std::string bo(1, le ? '<' : '>');
   const std::string vt = npy_descr(sizeof(T) == 4 ? DType::float32 : DType::float64);
   const GridSpec<T>& s = g.spec;
@@ -97,7 +97,7 @@ Result<std::uint64_t> write_sparse_npz(const std::string& path, const SparseGrid
 
 /// `text` as numpy's 'U' dtype: UTF-32 code units in the host's byte order.
 inline std::string npy_unicode(const std::string& text) {
-  const bool le = ebgeom::detail::host_is_little_endian();
+  const bool le = ebgeom::host_is_little_endian();
   std::string out;
   for (char c : text) {
     const char unit[4] = {le ? c : '\0', '\0', '\0', le ? '\0' : c};
@@ -114,7 +114,7 @@ inline std::string npy_unicode(const std::string& text) {
 template <class T>
 Result<std::uint64_t> write_dense_npz(const std::string& path, const GridSpec<T>& s,
                                       Span<const T> values, const NpzOptions& opt = {}) {
-  const std::string bo(1, ebgeom::detail::host_is_little_endian() ? '<' : '>');
+  const std::string bo(1, ebgeom::host_is_little_endian() ? '<' : '>');
   const std::string vt = npy_descr(sizeof(T) == 4 ? DType::float32 : DType::float64);
   const Vec3<T> o = s.origin(), h = s.spacing();
   const double origin[3] = {double(o.x), double(o.y), double(o.z)};
