@@ -4,13 +4,16 @@
 // keys, numbers at the edges of float and double) and compiling into a program in float and
 // double, then evaluating it at a few points. The only allowed failure is an input error
 // (ToolError with exit status 3) on one short line; anything else aborts. Mesh "path" keys are
-// removed before compiling so that no file is read.
+// removed before compiling so that no file is read; mesh "ref" keys resolve against a registry
+// holding one small in-memory mesh named "m" (any other name is an input error).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "ebgeom/mesh/generate.hpp"
+#include "ebgeom/scene/mesh_registry.hpp"
 #include "ebgeom/scene/scene.hpp"
 
 namespace {
@@ -42,10 +45,21 @@ void drop_paths(ebgeom::scene::Json& j) {
   }
 }
 
+/// The meshes that scenes may name by "ref": "m", an icosphere of 80 triangles.
+const ebgeom::scene::MeshRegistry& registry() {
+  static const ebgeom::scene::MeshRegistry r = [] {
+    ebgeom::scene::MeshRegistry m;
+    m.add("m", std::make_shared<const ebgeom::PolygonSoup<double>>(
+                   ebgeom::make_icosphere<double>(1).value()));
+    return m;
+  }();
+  return r;
+}
+
 template <class T> void compile_and_eval(const ebgeom::scene::Json& doc) {
   using namespace ebgeom;
   try {
-    const scene::SceneSdf<T> prog = scene::compile_scene<T>(doc, "fuzz.json");
+    const scene::SceneSdf<T> prog = scene::compile_scene<T>(doc, "fuzz.json", nullptr, &registry());
     const std::vector<Vec3<T>> pts = {{0, 0, 0}, {T(0.5), T(-1), T(2)}, {T(1e3), 0, 0}};
     std::vector<T> out(pts.size());
     prog.eval(Span<const Vec3<T>>(pts), Span<T>(out));
