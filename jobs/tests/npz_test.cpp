@@ -44,12 +44,7 @@ std::string slurp(const std::string& path) {
 }
 
 std::map<std::string, NpyArray> read_npz(const std::string& path) {
-  std::map<std::string, NpyArray> m;
-  const Zip z = read_zip(slurp(path));
-  EXPECT_TRUE(z.ok) << path;
-  for (const auto& [name, e] : z.entries)
-    m[name.substr(0, name.size() - 4)] = parse_npy(e.data, name);
-  return m;
+  return read_npz_bytes(slurp(path), path);
 }
 
 /// numpy's 'U' text of the host's byte order, back to ASCII.

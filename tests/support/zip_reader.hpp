@@ -194,4 +194,16 @@ inline NpyArray parse_npy(const std::string& b, const std::string& what) {
   return a;
 }
 
+/// The arrays of an `.npz` archive's bytes by member name (without `.npy`); fails the test on a
+/// malformed archive (`what` names it).
+inline std::map<std::string, NpyArray> read_npz_bytes(const std::string& b,
+                                                      const std::string& what) {
+  std::map<std::string, NpyArray> m;
+  const Zip z = read_zip(b);
+  EXPECT_TRUE(z.ok) << what;
+  for (const auto& [name, e] : z.entries)
+    m[name.substr(0, name.size() - 4)] = parse_npy(e.data, name);
+  return m;
+}
+
 } // namespace ebgeom::clitest

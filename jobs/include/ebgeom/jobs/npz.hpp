@@ -41,6 +41,36 @@ struct NpzOptions {
 Result<std::uint64_t> write_npz(const std::string& path, const std::vector<NpzMember>& members,
                                 const NpzOptions& opt = {});
 
+/// `text` as numpy's 'U' dtype: UTF-32 code units in the host's byte order.
+inline std::string npy_unicode(const std::string& text) {
+  const bool le = ebgeom::host_is_little_endian();
+  std::string out;
+  for (char c : text) {
+    const char unit[4] = {le ? c : '\0', '\0', '\0', le ? '\0' : c};
+    out.append(unit, 4);
+  }
+  return out;
+}
+
+/// The geometry members both grid archives hold (`origin`, `spacing`, `box`, `centering`), as the
+/// bytes written for them.
+template <class T> struct NpzGeometry {
+  double origin[3], spacing[3], box[6];
+  std::string centering;   ///< `cell` or `node`
+  std::string centering_u; ///< the same as numpy's 'U' text (`npy_unicode`)
+
+  explicit NpzGeometry(const GridSpec<T>& s)
+      : centering(to_string(s.centering)), centering_u(npy_unicode(centering)) {
+    const Vec3<T> o = s.origin(), h = s.spacing();
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = double(o[a]);
+      spacing[a] = double(h[a]);
+      box[a] = double(s.box.lo[a]);
+      box[3 + a] = double(s.box.hi[a]);
+    }
+  }
+};
+
 /// The `.npz` of a narrow-band grid (docs/cli.md, "Sparse output"):
 ///  - `tiles` (M, 3) uint32: tile coordinates (tx, ty, tz) of kept tile b, from
 ///    `SparseGrid::kept_tiles` (the member was named `blocks` in 0.1);
@@ -55,36 +85,24 @@ template <class T>
 Result<std::uint64_t> write_sparse_npz(const std::string& path, const SparseGrid<T>& g,
                                        const NpzOptions& opt = {}) {
   static_assert(sizeof(g.kept_tiles[0]) == 3 * sizeof(std::uint32_t), "tiles must be packed");
-  const bool le = host_is_little_endian();
-  const std::string bo(1, le ? '<' : '>');
+  const std::string bo(1, host_is_little_endian() ? '<' : '>');
   const std::string vt = npy_descr(sizeof(T) == 4 ? DType::float32 : DType::float64);
   const GridSpec<T>& s = g.spec;
   const std::size_t W = grid_tile;
   const std::uint64_t dims[3] = {s.nx(), s.ny(), s.nz()};
   const std::int64_t tile = std::int64_t(W);
-  const Vec3<T> o = s.origin(), h = s.spacing();
-  const double origin[3] = {double(o.x), double(o.y), double(o.z)};
-  const double spacing[3] = {double(h.x), double(h.y), double(h.z)};
-  const double box[6] = {double(s.box.lo.x), double(s.box.lo.y), double(s.box.lo.z),
-                         double(s.box.hi.x), double(s.box.hi.y), double(s.box.hi.z)};
-  // numpy's 'U' dtype: UTF-32 code units in the array's byte order.
-  const std::string text = to_string(s.centering);
-  std::string centring;
-  for (char c : text) {
-    const char unit[4] = {le ? c : '\0', '\0', '\0', le ? '\0' : c};
-    centring.append(unit, 4);
-  }
+  const NpzGeometry<T> geo(s);
   const std::size_t m = g.kept_tiles.size();
   using Shape = std::vector<std::size_t>;
   const std::vector<NpzMember> members = {
       {"dims", npy_header(bo + "u8", Shape{3}), dims, sizeof dims},
       {"tile", npy_header(bo + "i8", Shape{}), &tile, sizeof tile},
-      {"origin", npy_header(bo + "f8", Shape{3}), origin, sizeof origin},
-      {"spacing", npy_header(bo + "f8", Shape{3}), spacing, sizeof spacing},
-      {"box", npy_header(bo + "f8", Shape{2, 3}), box, sizeof box},
+      {"origin", npy_header(bo + "f8", Shape{3}), geo.origin, sizeof geo.origin},
+      {"spacing", npy_header(bo + "f8", Shape{3}), geo.spacing, sizeof geo.spacing},
+      {"box", npy_header(bo + "f8", Shape{2, 3}), geo.box, sizeof geo.box},
       {"band", npy_header(vt, Shape{}), &g.band, sizeof(T)},
-      {"centering", npy_header(bo + "U" + std::to_string(text.size()), Shape{}), centring.data(),
-       centring.size()},
+      {"centering", npy_header(bo + "U" + std::to_string(geo.centering.size()), Shape{}),
+       geo.centering_u.data(), geo.centering_u.size()},
       {"tiles", npy_header(bo + "u4", Shape{m, 3}), g.kept_tiles.data(),
        std::uint64_t(m) * sizeof(g.kept_tiles[0])},
       {"tile_code", npy_header(bo + "i4", Shape{g.tiles[2], g.tiles[1], g.tiles[0]}),
@@ -93,17 +111,6 @@ Result<std::uint64_t> write_sparse_npz(const std::string& path, const SparseGrid
        std::uint64_t(g.values.size()) * sizeof(T)},
   };
   return write_npz(path, members, opt);
-}
-
-/// `text` as numpy's 'U' dtype: UTF-32 code units in the host's byte order.
-inline std::string npy_unicode(const std::string& text) {
-  const bool le = ebgeom::host_is_little_endian();
-  std::string out;
-  for (char c : text) {
-    const char unit[4] = {le ? c : '\0', '\0', '\0', le ? '\0' : c};
-    out.append(unit, 4);
-  }
-  return out;
 }
 
 /// The dense `.npz` of a grid (docs/cli.md, "Dense .npz output"): the grid and its geometry in one
@@ -116,22 +123,16 @@ Result<std::uint64_t> write_dense_npz(const std::string& path, const GridSpec<T>
                                       Span<const T> values, const NpzOptions& opt = {}) {
   const std::string bo(1, ebgeom::host_is_little_endian() ? '<' : '>');
   const std::string vt = npy_descr(sizeof(T) == 4 ? DType::float32 : DType::float64);
-  const Vec3<T> o = s.origin(), h = s.spacing();
-  const double origin[3] = {double(o.x), double(o.y), double(o.z)};
-  const double spacing[3] = {double(h.x), double(h.y), double(h.z)};
-  const double box[6] = {double(s.box.lo.x), double(s.box.lo.y), double(s.box.lo.z),
-                         double(s.box.hi.x), double(s.box.hi.y), double(s.box.hi.z)};
-  const std::string text = to_string(s.centering);
-  const std::string centring = npy_unicode(text);
+  const NpzGeometry<T> geo(s);
   using Shape = std::vector<std::size_t>;
   const std::vector<NpzMember> members = {
       {"sdf", npy_header(vt, Shape{s.nz(), s.ny(), s.nx()}), values.data(),
        std::uint64_t(values.size()) * sizeof(T)},
-      {"origin", npy_header(bo + "f8", Shape{3}), origin, sizeof origin},
-      {"spacing", npy_header(bo + "f8", Shape{3}), spacing, sizeof spacing},
-      {"box", npy_header(bo + "f8", Shape{2, 3}), box, sizeof box},
-      {"centering", npy_header(bo + "U" + std::to_string(text.size()), Shape{}), centring.data(),
-       centring.size()},
+      {"origin", npy_header(bo + "f8", Shape{3}), geo.origin, sizeof geo.origin},
+      {"spacing", npy_header(bo + "f8", Shape{3}), geo.spacing, sizeof geo.spacing},
+      {"box", npy_header(bo + "f8", Shape{2, 3}), geo.box, sizeof geo.box},
+      {"centering", npy_header(bo + "U" + std::to_string(geo.centering.size()), Shape{}),
+       geo.centering_u.data(), geo.centering_u.size()},
   };
   return write_npz(path, members, opt);
 }
