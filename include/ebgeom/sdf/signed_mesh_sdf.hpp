@@ -237,8 +237,10 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
   }
 
   /// Split-sign protocol, batch form: `out[i] = sign_at(pts[i])` for every i, the winding modes'
-  /// fast winding numbers evaluated in packets (`FastWindingNumber::eval_packet`, bit for bit the
-  /// per-point values) over runs of consecutive points: order them so that neighbours are near.
+  /// signs decided in packets over runs of consecutive points (order them so that neighbours
+  /// are near): `FastWindingNumber::above_half_packet`, which bounds the fast winding numbers
+  /// with a cheap vectorised pass and evaluates them exactly (bit for bit the per-point values)
+  /// only where the bounds do not decide.
   void signs_at(Span<const Vec3<T>> pts, Span<Sign> out) const noexcept {
     EBGEOM_ASSERT(pts.size() == out.size());
     if (mode_ != SignMode::fast_winding) {
@@ -246,12 +248,12 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
       return;
     }
     constexpr int P = FastWindingNumber<T, K>::packet_width;
-    T w[P];
+    bool above[P];
     for (std::size_t i = 0; i < pts.size(); i += std::size_t(P)) {
       const int n = int(std::min(pts.size() - i, std::size_t(P)));
-      fast_.eval_packet(pts.data() + i, n, w);
+      fast_.above_half_packet(pts.data() + i, n, above);
       for (int j = 0; j < n; ++j)
-        out[i + std::size_t(j)] = w[j] > T(0.5) ? Sign::negative : Sign::positive;
+        out[i + std::size_t(j)] = above[j] ? Sign::negative : Sign::positive;
     }
   }
 

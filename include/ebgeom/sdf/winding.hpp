@@ -303,6 +303,56 @@ EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void sqrt_lanes(T* EBGEOM_RESTRICT x) 
   for (int j = 0; j < N; ++j) x[j] = winding_sqrt(x[j]);
 #endif
 }
+
+/// Largest |`atan2_bounded(y, x)` - `std::atan2(y, x)`| over all finite (y, x), both rounded as
+/// computed: see `atan2_bounded`.
+inline constexpr double atan2_bounded_error = 3e-7;
+
+/// atan2(y, x) to within `atan2_bounded_error` of `std::atan2` for every finite y and x, branch
+/// free so that loops over a packet's lanes vectorise; NaN when y or x is infinite or NaN. The
+/// octant reduction a = min(|x|, |y|) / max(|x|, |y|) in [0, 1], then atan(a) by the polynomial
+/// a (1 + c1 a² + ... + c8 a¹⁶) of Abramowitz & Stegun 4.4.49 (published error <= 2e-8 on
+/// [0, 1]), then π/2 - t when |y| > |x|, π - t when x is negative (or -0), and the sign of y, as
+/// `std::atan2` does for signed zeros (atan2(±0, -0) = ±π, atan2(±0, +0) = ±0).
+/// The bound: the polynomial's error e(a) = p(a) - atan(a) has |e'| <= |p'| + 1 <= 7.64 on
+/// [0, 1] (|p'| <= Σ (2k + 1) |c_k| = 6.64); its largest magnitude at the 2²⁴ + 1 points a =
+/// i 2⁻²⁴ is 1.36e-8 (computed in double against atan), so |e| <= 1.36e-8 + 7.64 · 2⁻²⁵ <=
+/// 2.4e-7 on [0, 1]. The division, the Horner steps (no contraction in these kernels), the
+/// reflections and the constants π/2, π add at most a few ulps of π (< 4e-15), and `std::atan2`
+/// (glibc: correctly rounded in practice, at most 1 ulp) differs from atan by at most 4.5e-16:
+/// 2.4e-7 + 5e-15 < 3e-7. tests/unit/sign/winding_test.cpp checks it at 2²⁰ points, signed zeros,
+/// denormals and huge ratios.
+EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE double atan2_bounded(double y, double x) noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+  // The builtins: GCC does not inline std::abs and std::copysign into these kernels (their
+  // optimisation attributes differ), which would keep the loops from vectorising.
+  const auto fabs = [](double v) { return __builtin_fabs(v); };
+  const auto copysign = [](double m, double sg) { return __builtin_copysign(m, sg); };
+#else
+  const auto fabs = [](double v) { return std::abs(v); };
+  const auto copysign = [](double m, double sg) { return std::copysign(m, sg); };
+#endif
+  constexpr double c1 = -0.3333314528, c2 = 0.1999355085, c3 = -0.1420889944, c4 = 0.1065626393,
+                   c5 = -0.0752896400, c6 = 0.0429096138, c7 = -0.0161657367, c8 = 0.0028662257;
+  constexpr double pi_2 = 1.5707963267948966, pi_1 = 3.141592653589793;
+  const double ax = fabs(x), ay = fabs(y);
+  const double hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
+  const double a = lo / (hi > 0 ? hi : 1.0); // 0 / 1 for x = y = 0
+  const double a2 = a * a;
+  double t = c8;
+  t = t * a2 + c7;
+  t = t * a2 + c6;
+  t = t * a2 + c5;
+  t = t * a2 + c4;
+  t = t * a2 + c3;
+  t = t * a2 + c2;
+  t = t * a2 + c1;
+  t = (t * a2 + 1.0) * a;
+  t = ay > ax ? pi_2 - t : t;
+  t = copysign(1.0, x) < 0 ? pi_1 - t : t;
+  // x - x and y - y: 0 for finite inputs, NaN for infinite or NaN ones (the sign of y kept).
+  return copysign(t + ((x - x) + (y - y)), y);
+}
 } // namespace detail
 
 /// BVH-accelerated generalized winding number (Barill et al. 2018; see the file comment).
@@ -426,20 +476,109 @@ template <class T, int K = 4> class FastWindingNumber {
       for (int j = 0; j < n; ++j) out[j] = (*this)(pts[j]);
       return;
     }
+    alignas(64) T far_sum[P];
+    alignas(64) double near[P];
+    packet_sums<false>(pts, n, far_sum, near, nullptr);
+    for (int j = 0; j < n; ++j) out[j] = T(near[j] * inv4pi) + far_sum[j];
+  }
+
+  /// Bounds on the winding numbers at `n` points (0 <= n <= `packet_width`): lo[j] <=
+  /// `(*this)(pts[j])` <= hi[j] for every j whose bounds are finite (-inf, +inf where nothing is
+  /// claimed: a NaN or huge point). One traversal as `eval_packet` with the same far fields
+  /// (the same arithmetic: bit for bit its far-field sums), but the near leaves' solid angles
+  /// with `detail::atan2_bounded` over all the lanes at once instead of `std::atan2` per lane;
+  /// see `sign_bound` for the margin. Thread-safe.
+  EBGEOM_WINDING_KERNEL void bound_packet(const Vec3<T>* pts, int n, T* lo, T* hi) const noexcept {
+    constexpr int P = packet_width;
+    if (n <= 0) return;
+    EBGEOM_ASSERT(n <= P);
+    alignas(64) T far_sum[P];
+    alignas(64) double near[P], cnt[P];
+    packet_sums<true>(pts, n, far_sum, near, cnt);
+    const T inf = std::numeric_limits<T>::infinity();
+    for (int j = 0; j < n; ++j) {
+      const double e = sign_bound(near[j], cnt[j]);
+      // `operator()` returns T(near * inv4pi) + far_sum: every step is a correctly rounded,
+      // non-decreasing function of near, so the same steps from near - e and near + e bound it.
+      const T l = T((near[j] - e) * inv4pi) + far_sum[j];
+      const T h = T((near[j] + e) * inv4pi) + far_sum[j];
+      const bool ok = std::isfinite(l) && std::isfinite(h);
+      lo[j] = ok ? l : -inf;
+      hi[j] = ok ? h : inf;
+    }
+  }
+
+  /// above[j] = `(*this)(pts[j]) > 1/2` (inside by the winding number) at `n` points (0 <= n <=
+  /// `packet_width`), exactly as the values `eval_packet` gives would decide: from `bound_packet`
+  /// where its interval lies on one side of 1/2, from `eval_packet` (over the undecided points
+  /// only) elsewhere (about |w - 1/2| < 1e-5: near holes' fills, NaN points). Thread-safe.
+  void above_half_packet(const Vec3<T>* pts, int n, bool* above) const noexcept {
+    constexpr int P = packet_width;
+    if (n <= 0) return;
+    EBGEOM_ASSERT(n <= P);
+    alignas(64) T lo[P], hi[P];
+    bound_packet(pts, n, lo, hi);
+    Vec3<T> rest[P];
+    int idx[P], m = 0;
+    for (int j = 0; j < n; ++j) {
+      if (lo[j] > T(0.5)) {
+        above[j] = true;
+      } else if (hi[j] <= T(0.5)) {
+        above[j] = false;
+      } else {
+        idx[m] = j;
+        rest[m++] = pts[j];
+      }
+    }
+    if (m == 0) return;
+    T w[P];
+    eval_packet(rest, m, w);
+    for (int i = 0; i < m; ++i) above[idx[i]] = w[i] > T(0.5);
+  }
+
+  /// The margin of `bound_packet` on a point's near sum `near` (Σ of `cnt` solid angles, each
+  /// 2 `atan2_bounded`): the exact path sums 2 `std::atan2` of the same num and den (the same
+  /// arithmetic, bit for bit) in the same order, so the two sums differ by at most cnt · 2 ·
+  /// `atan2_bounded_error` in their terms plus both sums' rounding: a recursive sum of N <= 2
+  /// cnt additions (the leaves' partial sums, then the point's) of terms of magnitude <= 2π errs
+  /// by at most N u Σ |terms| <= 2 cnt · u · 2π cnt each (u = 2⁻⁵³). The result is widened
+  /// so that near ± margin, rounded, still bounds the exact sum.
+  static double sign_bound(double near, double cnt) noexcept {
+    constexpr double u = 1.1102230246251565e-16, two_pi = 6.283185307179586;
+    const double e = cnt * 2 * detail::atan2_bounded_error + 2 * (2 * cnt * u * two_pi * cnt);
+    return e * (1 + 1e-9) + 4 * u * std::abs(near) + 1e-300;
+  }
+
+ private:
+  /// The far-field sums (in T) and near sums (in double, radians) of `eval_packet`'s traversal
+  /// at `n` points, 1 <= n <= `packet_width`; with `Approx`, the near leaves' angles from
+  /// `detail::atan2_bounded` and cnt[j] the number of solid angles summed at point j.
+  template <bool Approx>
+  EBGEOM_WINDING_KERNEL void packet_sums(const Vec3<T>* pts, int n, T* far_sum, double* near,
+                                         double* cnt) const noexcept {
+    constexpr int P = packet_width;
     constexpr T inv4pi_t = T(0.07957747154594767);
-    alignas(64) T px[P], py[P], pz[P], far_sum[P], f[P];
-    alignas(64) double dx[P], dy[P], dz[P], near[P];
+    alignas(64) T px[P], py[P], pz[P], f[P];
+    alignas(64) double dx[P], dy[P], dz[P];
     for (int j = 0; j < P; ++j) {
       const Vec3<T>& q = pts[j < n ? j : n - 1]; // spare lanes repeat the last point, masked
       px[j] = q.x, py[j] = q.y, pz[j] = q.z;
       dx[j] = double(q.x), dy[j] = double(q.y), dz[j] = double(q.z);
       far_sum[j] = T(0), near[j] = 0;
+      if constexpr (Approx) cnt[j] = 0;
     }
+    const std::uint32_t all = n >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << n) - 1;
+    const bvh::ChildRef root = bvh_.root;
+    if (root.is_leaf()) {
+      leaf_sum_packet<Approx>(root.index, root.count, dx, dy, dz, all, near, cnt);
+      return;
+    }
+    if (!root.is_inner()) return;
     struct Item {
       std::uint32_t node, mask; ///< node, and the points that open it (bit j: point j)
     };
     bvh::FixedStack<Item, bvh::WideBvh<T, K>::stack_capacity> todo;
-    todo.push({root.index, n >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << n) - 1});
+    todo.push({root.index, all});
     while (!todo.empty()) {
       const Item it = todo.pop();
       const WindingNode<T, K>& c = nodes_[it.node];
@@ -484,14 +623,14 @@ template <class T, int K = 4> class FastWindingNumber {
         if (open == 0) continue;
         const bvh::ChildRef r = node.child[k];
         if (r.is_leaf())
-          leaf_sum_packet(r.index, r.count, dx, dy, dz, open, near);
+          leaf_sum_packet<Approx>(r.index, r.count, dx, dy, dz, open, near, cnt);
         else if (r.is_inner())
           todo.push({r.index, open});
       }
     }
-    for (int j = 0; j < n; ++j) out[j] = T(near[j] * inv4pi) + far_sum[j];
   }
 
+ public:
   /// Winding numbers at every point of `pts`, bit for bit `(*this)(pts[i])`: `eval_packet` over
   /// runs of `packet_width` consecutive points (order the points so that neighbours are near).
   void eval(Span<const Vec3<T>> pts, Span<T> out) const noexcept {
@@ -579,10 +718,12 @@ template <class T, int K = 4> class FastWindingNumber {
     return s;
   }
 
-  /// `leaf_sum` at the packet's points whose bit is set in `open`, added to their `near`.
-  EBGEOM_WINDING_KERNEL void leaf_sum_packet(std::uint32_t first, std::uint32_t count,
-                                             const double* px, const double* py, const double* pz,
-                                             std::uint32_t open, double* near) const noexcept {
+  /// `leaf_sum` at the packet's points whose bit is set in `open`, added to their `near`; with
+  /// `Approx`, the angles from `detail::atan2_bounded` and the count of angles in `cnt`.
+  template <bool Approx>
+  EBGEOM_WINDING_KERNEL void
+  leaf_sum_packet(std::uint32_t first, std::uint32_t count, const double* px, const double* py,
+                  const double* pz, std::uint32_t open, double* near, double* cnt) const noexcept {
     constexpr int P = packet_width;
     const T* t = tri_.data();
     const std::size_t n = n_;
@@ -603,11 +744,22 @@ template <class T, int K = 4> class FastWindingNumber {
       for (int j = 0; j < P; ++j)
         solid_angle_terms(px[j], py[j], pz[j], ax, ay, az, bx, by, bz, cx, cy, cz, la[j], lb[j],
                           lc[j], num[j], den[j]);
-      for (int j = 0; j < P; ++j)
-        if ((open >> j) & 1u) s[j] += 2.0 * std::atan2(num[j], den[j]);
+      if constexpr (Approx) {
+        for (int j = 0; j < P; ++j) {
+          const double a = 2.0 * detail::atan2_bounded(num[j], den[j]);
+          s[j] += (open >> j) & 1u ? a : 0.0;
+        }
+      } else {
+        for (int j = 0; j < P; ++j)
+          if ((open >> j) & 1u) s[j] += 2.0 * std::atan2(num[j], den[j]);
+      }
     }
     for (int j = 0; j < P; ++j)
       if ((open >> j) & 1u) near[j] += s[j];
+    if constexpr (Approx) {
+      const double c = double(count);
+      for (int j = 0; j < P; ++j) cnt[j] += (open >> j) & 1u ? c : 0.0;
+    }
   }
 
   /// Adds the exact solid angles of slots [first, first + count) over the box.

@@ -88,6 +88,33 @@ TYPED_TEST(SignedMeshSdfTest, BoundedIsTheValueWithinItsBoundInEveryMode) {
   EXPECT_TRUE(std::isnan(s.bounded({nan, T(0), T(0)}, T(1))));
 }
 
+TYPED_TEST(SignedMeshSdfTest, BatchSignsAreThePointSignsInEveryMode) {
+  using T = TypeParam;
+  static_assert(has_batch_sign_v<SignedMeshSdf<T>>);
+  const PolygonSoup<T> ball = make_icosphere<T>(3).value();
+  for (const PolygonSoup<T>& soup : {ball, test::remove_cap(ball, T(0.3))}) {
+    // Random points, points next to the surface (vertices pushed in and out along the radius by
+    // 1e-6 to 1e-2) and a lattice across the hole's fill (w crosses 1/2 there).
+    std::vector<Vec3<T>> pts =
+        test::random_points(make_triangle_mesh(soup).value().bounds().grown(T(0.5)), 700, 41);
+    for (std::size_t v = 0; v < soup.vertices.size(); v += 3)
+      for (const T k : {T(1e-6), T(-1e-6), T(1e-3), T(-1e-3), T(1e-2)})
+        pts.push_back(soup.vertices[v] * (T(1) + k));
+    for (int i = 0; i < 12; ++i)
+      for (int j = 0; j < 12; ++j)
+        for (int z = 0; z < 8; ++z)
+          pts.push_back(
+              {T(-0.8) + T(0.14) * T(i), T(-0.8) + T(0.14) * T(j), T(0.2) + T(0.03) * T(z)});
+    for (SignMode m : all_modes) {
+      const auto s = with_mode(soup, m);
+      std::vector<Sign> got(pts.size());
+      s.signs_at(Span<const Vec3<T>>(pts), Span<Sign>(got));
+      for (std::size_t i = 0; i < pts.size(); ++i)
+        ASSERT_EQ(got[i], s.sign_at(pts[i])) << to_string(m) << " " << pts[i];
+    }
+  }
+}
+
 TYPED_TEST(SignedMeshSdfTest, OutOfRangeSignModeIsAnErrorNotUnsigned) {
   using T = TypeParam;
   SignOptions o;

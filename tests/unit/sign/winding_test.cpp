@@ -223,5 +223,152 @@ TYPED_TEST(WindingTest, PacketsAreThePerPointValuesBitForBit) {
   EXPECT_EQ(untouched, T(7));
 }
 
+// ---- The sign-only fast path: bound_packet and above_half_packet -------------------------------
+
+TEST(WindingBoundedAtan2, WithinItsBoundOfStdAtan2) {
+  const double bound = detail::atan2_bounded_error;
+  double worst = 0;
+  const auto check = [&](double y, double x) {
+    const double a = detail::atan2_bounded(y, x), e = std::atan2(y, x);
+    worst = std::max(worst, std::abs(a - e));
+    ASSERT_LE(std::abs(a - e), bound) << "atan2(" << y << ", " << x << ") = " << e << ", got " << a;
+  };
+  // The polynomial's interval, finely: every octant of the circle, 2^20 ratios.
+  constexpr int n = 1 << 20;
+  for (int i = 0; i <= n; ++i) {
+    const double a = double(i) / n;
+    for (const double sx : {1.0, -1.0})
+      for (const double sy : {1.0, -1.0}) {
+        check(sy * a, sx);
+        check(sy, sx * a);
+      }
+  }
+  // Random magnitudes over the whole range, denormals, signed zeros, huge ratios.
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> expo(-1070, 1020), unit(-1, 1);
+  for (int i = 0; i < 200000; ++i)
+    check(unit(rng) * std::exp2(expo(rng)), unit(rng) * std::exp2(expo(rng)));
+  const double specials[] = {0.0,  -0.0,   1e-310, -1e-310, 4.9e-324, -4.9e-324, 1.0,
+                             -1.0, 1e-300, 1e300,  -1e300,  1.7e308,  -1.7e308,  0.5};
+  for (const double y : specials)
+    for (const double x : specials) check(y, x);
+  EXPECT_LT(worst, 1e-7); // the bound is not vacuous: the polynomial errs by about 1.4e-8
+  // Signed zeros as std::atan2 gives them (exactly), and NaN for non-finite arguments.
+  EXPECT_TRUE(std::signbit(detail::atan2_bounded(-0.0, 1.0)));
+  EXPECT_EQ(detail::atan2_bounded(-0.0, -1.0), std::atan2(-0.0, -1.0));
+  EXPECT_EQ(detail::atan2_bounded(0.0, -0.0), std::atan2(0.0, -0.0));
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+  for (const double v : {inf, -inf, nan}) {
+    EXPECT_TRUE(std::isnan(detail::atan2_bounded(v, 1.0))) << v;
+    EXPECT_TRUE(std::isnan(detail::atan2_bounded(1.0, v))) << v;
+  }
+}
+
+/// Points where the fast winding number crosses 1/2 (through holes, across the surface), as close
+/// as the precision allows: bisection along segments from points with w > 1/2 to points with
+/// w <= 1/2 down to neighbouring representable points; both ends and the bisection's last
+/// midpoints are kept.
+template <class T, int K>
+std::vector<Vec3<T>> near_half_points(const FastWindingNumber<T, K>& fw, const TriangleMesh<T>& m,
+                                      std::uint64_t seed) {
+  const std::vector<Vec3<T>> cand = test::random_points(m.bounds().grown(T(0.3)), 400, seed);
+  std::vector<Vec3<T>> in, out, res;
+  for (const auto& p : cand) (fw(p) > T(0.5) ? in : out).push_back(p);
+  for (std::size_t i = 0; i < std::min(in.size(), out.size()) && res.size() < 600; ++i) {
+    Vec3<T> a = in[i], b = out[i]; // w(a) > 1/2 >= w(b)
+    for (int it = 0; it < 200; ++it) {
+      const Vec3<T> c = (a + b) * T(0.5);
+      if (c == a || c == b) break;
+      (fw(c) > T(0.5) ? a : b) = c;
+      if (it > 150 || norm(a - b) < T(64) * std::numeric_limits<T>::epsilon()) res.push_back(c);
+    }
+    res.push_back(a);
+    res.push_back(b);
+  }
+  return res;
+}
+
+/// bound_packet's intervals hold `fw(p)` and are narrow; above_half_packet gives `fw(p) > 1/2`
+/// exactly, at random points, lattice groups near the surface, vertices, edge midpoints, points
+/// next to w = 1/2 and a packet with a NaN point. Adds to `undecided` the number of points whose
+/// interval held 1/2 (decided by the exact fallback).
+template <class T, int K>
+void expect_bounds_hold(const TriangleMesh<T>& m, int leaf, int& undecided) {
+  WindingOptions o;
+  o.max_leaf_size = std::uint32_t(leaf);
+  const auto fw = FastWindingNumber<T, K>::make(m, o).value();
+  std::vector<Vec3<T>> pts = packet_points(m, std::uint64_t(K * 10 + leaf));
+  for (std::size_t t = 0; t < m.triangle_count(); t += 3)
+    pts.push_back((m.corner(t, 0) + m.corner(t, 1)) / T(2));
+  const std::vector<Vec3<T>> half = near_half_points(fw, m, std::uint64_t(leaf + 5));
+  pts.insert(pts.end(), half.begin(), half.end());
+  constexpr int P = FastWindingNumber<T, K>::packet_width;
+  std::mt19937_64 rng(9);
+  std::uniform_int_distribution<int> size(1, P);
+  T lo[P], hi[P];
+  bool above[P];
+  for (std::size_t i = 0; i < pts.size();) {
+    const int n = int(std::min<std::size_t>(std::size_t(size(rng)), pts.size() - i));
+    const Vec3<T>* q = pts.data() + i;
+    fw.bound_packet(q, n, lo, hi);
+    fw.above_half_packet(q, n, above);
+    for (int j = 0; j < n; ++j) {
+      const T w = fw(q[j]);
+      ASSERT_TRUE(lo[j] <= w && w <= hi[j])
+          << q[j] << ": " << w << " not in [" << lo[j] << ", " << hi[j] << "]";
+      // Narrow: a few hundred angles of error 6e-7 each at most.
+      ASSERT_LT(double(hi[j]) - double(lo[j]), 1e-3) << q[j];
+      ASSERT_EQ(above[j], w > T(0.5)) << q[j] << ": w = " << w;
+      undecided += lo[j] <= T(0.5) && T(0.5) < hi[j];
+    }
+    i += std::size_t(n);
+  }
+  // A packet with a NaN point: no claim there (infinite bounds), the others unaffected.
+  Vec3<T> mixed[P];
+  for (int j = 0; j < P; ++j) mixed[j] = pts[std::size_t(j) * 5 % pts.size()];
+  mixed[3] = {std::numeric_limits<T>::quiet_NaN(), T(0), T(0)};
+  fw.bound_packet(mixed, P, lo, hi);
+  fw.above_half_packet(mixed, P, above);
+  EXPECT_TRUE(std::isinf(lo[3]) && std::isinf(hi[3]));
+  EXPECT_EQ(above[3], fw(mixed[3]) > T(0.5));
+  for (int j = 0; j < P; ++j)
+    if (j != 3) {
+      const T w = fw(mixed[j]);
+      ASSERT_TRUE(lo[j] <= w && w <= hi[j]) << j;
+      ASSERT_EQ(above[j], w > T(0.5)) << j;
+    }
+}
+
+TYPED_TEST(WindingTest, SignBoundsHoldAndDecideAsThePerPointValues) {
+  using T = TypeParam;
+  const std::pair<const char*, PolygonSoup<T>> meshes[] = {
+      {"open bowl", test::remove_cap(make_icosphere<T>(4).value(), T(0.3))},
+      {"open torus", test::remove_cap(make_torus<T>(1, T(0.3), 48, 16).value(), T(0.1))},
+      {"open box",
+       test::remove_cap(make_box<T>({-1, -0.7f, -0.5f}, {1, 0.7f, 0.5f}).value(), T(0.4))},
+      {"closed ball", make_icosphere<T>(3).value()}};
+  int undecided = 0;
+  for (const auto& [name, soup] : meshes) {
+    SCOPED_TRACE(name);
+    const TriangleMesh<T> m = make_triangle_mesh(soup).value();
+    expect_bounds_hold<T, 4>(m, 8, undecided);
+    expect_bounds_hold<T, 8>(m, 8, undecided);
+    expect_bounds_hold<T, 2>(m, 1, undecided);
+    expect_bounds_hold<T, 4>(m, 3, undecided);
+  }
+  // The points next to w = 1/2 reach the exact fallback (the test is adversarial).
+  EXPECT_GT(undecided, 10);
+  // A single-leaf tree (the root is a leaf), and empty packets.
+  const TriangleMesh<T> tet = make_triangle_mesh(make_tetrahedron<T>().value()).value();
+  expect_bounds_hold<T, 4>(tet, 8, undecided);
+  const auto fw = FastWindingNumber<T>::make(tet).value();
+  T untouched = T(7);
+  bool flag = true;
+  fw.bound_packet(nullptr, 0, &untouched, &untouched);
+  fw.above_half_packet(nullptr, 0, &flag);
+  EXPECT_EQ(untouched, T(7));
+  EXPECT_TRUE(flag);
+}
+
 } // namespace
 } // namespace ebgeom
