@@ -21,6 +21,7 @@
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/core/isa.hpp"
+#include "ebgeom/core/simd.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/geom/tri_block.hpp"
 #include "ebgeom/sdf/mesh_block_search.hpp"
@@ -47,6 +48,26 @@ boxes_distance2_inline(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGE
 }
 } // namespace detail
 
+namespace detail {
+/// Squared distances from box `b` to `n` boxes stored as structure of arrays, each as
+/// `MeshTileEval::box_box_distance2` computes it (same operations).
+template <class T>
+EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE void
+boxes_box_distance2_inline(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,
+                           const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx,
+                           const T* EBGEOM_RESTRICT hy, const T* EBGEOM_RESTRICT hz,
+                           const Aabb<T>& b, T* EBGEOM_RESTRICT out) noexcept {
+  const T blx = b.lo.x, bly = b.lo.y, blz = b.lo.z, bhx = b.hi.x, bhy = b.hi.y, bhz = b.hi.z;
+  for (std::size_t i = 0; i < n; ++i) {
+    T ax = lx[i] - bhx, bx = blx - hx[i], ay = ly[i] - bhy, by = bly - hy[i], az = lz[i] - bhz,
+      bz = blz - hz[i];
+    ax = ax < bx ? bx : ax, ay = ay < by ? by : ay, az = az < bz ? bz : az;
+    ax = ax < T(0) ? T(0) : ax, ay = ay < T(0) ? T(0) : ay, az = az < T(0) ? T(0) : az;
+    out[i] = ax * ax + ay * ay + az * az;
+  }
+}
+} // namespace detail
+
 template <class T>
 EBGEOM_VECTOR_KERNEL inline void
 boxes_distance2(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,
@@ -57,6 +78,27 @@ boxes_distance2(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_REST
 }
 
 namespace detail {
+
+/// `block_min` of a tile sample's search pruning with `lim` (>= `b2`), skipping the distance
+/// kernel when no lane can be near enough: a lane is near enough when its triangle's box is within
+/// `lim` (`block_box_mask_inline`, as `block_min_pruned`) and, given supporting planes
+/// (`block_planes`, `nx != nullptr`), its plane's lower bound `n · p - off` is at most `r` (the
+/// bound's distance with the planes' error margins). The planes bound each triangle's distance
+/// from below (convexity), so a lane failing either test cannot reach `b2`; when some lane passes,
+/// the result is `block_min_inline` over the whole block, as in `block_min_pruned`.
+template <class T, int W, Isa I>
+EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE LaneMin<T, W>
+block_min_planes_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T b2, T lim, const T* nx,
+                        const T* ny, const T* nz, const T* off, T r) noexcept {
+  LaneMask<W> m = block_box_mask_inline<T, W, I>(t, p, lim);
+  if (nx != nullptr && m != 0) {
+    T v[W];
+    for (int l = 0; l < W; ++l) v[l] = nx[l] * p.x + ny[l] * p.y + nz[l] * p.z - off[l];
+    m &= lane_mask<LaneCmp::le, I>(v, r);
+  }
+  if (m == 0) return {b2, 0};
+  return block_min_inline<T, W, I>(t, p, b2);
+}
 
 template <Isa I> struct MeshTileKernels;
 
@@ -110,10 +152,24 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
       for (int l = 0; l < W; ++l)
         pnx.push_back(0), pny.push_back(0), pnz.push_back(0), poff.push_back(0);
     }
-    void add_from(const LeafList& o, std::size_t i) {
-      lo_x.push_back(o.lo_x[i]), lo_y.push_back(o.lo_y[i]), lo_z.push_back(o.lo_z[i]);
-      hi_x.push_back(o.hi_x[i]), hi_y.push_back(o.hi_y[i]), hi_z.push_back(o.hi_z[i]);
-      first.push_back(o.first[i]), count.push_back(o.count[i]), root.push_back(o.root[i]);
+    /// The leaves `i` of `o` with `d2[i] < lim2`, padded.
+    void filter_from(const LeafList& o, const T* d2, T lim2) {
+      const std::size_t n = o.size();
+      std::size_t m = 0;
+      for (std::size_t i = 0; i < n; ++i) m += d2[i] < lim2;
+      const std::size_t mp = (m + 15) / 16 * 16;
+      for (auto* v : {&lo_x, &lo_y, &lo_z, &hi_x, &hi_y, &hi_z}) v->resize(mp);
+      first.resize(m), count.resize(m), root.resize(m);
+      std::size_t k = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!(d2[i] < lim2)) continue;
+        lo_x[k] = o.lo_x[i], lo_y[k] = o.lo_y[i], lo_z[k] = o.lo_z[i];
+        hi_x[k] = o.hi_x[i], hi_y[k] = o.hi_y[i], hi_z[k] = o.hi_z[i];
+        first[k] = o.first[i], count[k] = o.count[i], root[k] = o.root[i];
+        ++k;
+      }
+      const T inf = std::numeric_limits<T>::infinity();
+      for (; k < mp; ++k) lo_x[k] = lo_y[k] = lo_z[k] = inf, hi_x[k] = hi_y[k] = hi_z[k] = -inf;
     }
     void pad() {
       const T inf = std::numeric_limits<T>::infinity();
@@ -215,17 +271,30 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
       if (!(d2[i] < lim) || (list.first[i] == seed_block && list.count[i] <= std::uint32_t(W)))
         continue;
       const std::size_t j = list.root[i];
-      if (pl.planes[j]) {
-        const T* nx = pl.pnx.data() + j * W;
-        const T* ny = pl.pny.data() + j * W;
-        const T* nz = pl.pnz.data() + j * W;
-        const T* of = pl.poff.data() + j * W;
-        T lb = std::numeric_limits<T>::infinity();
-        for (int l = 0; l < W; ++l)
-          lb = std::min(lb, nx[l] * p.x + ny[l] * p.y + nz[l] * p.z - of[l]);
-        if (lb > r) continue;
+      if (list.count[i] > std::uint32_t(W)) {
+        s_.template scan_blocks<I>(list.first[i], list.count[i], p, b2, best);
+      } else {
+        // One block: its lanes' boxes and, once known, supporting planes decide whether the
+        // distance kernel runs; then `scan_blocks`'s update (ties: lowest triangle id).
+        const bool has = pl.planes[j] != 0;
+        const std::uint32_t blk = list.first[i];
+        const LaneMin<T, W> lm = MeshTileKernels<I>::block_min_planes(
+            s_.blocks[blk], p, b2, lim, has ? pl.pnx.data() + j * W : nullptr,
+            pl.pny.data() + j * W, pl.pnz.data() + j * W, pl.poff.data() + j * W, r);
+        if (lm.mask != 0 && (lm.min < b2 || best != bvh::ChildRef::none)) {
+          const std::uint32_t slot =
+              blk * std::uint32_t(W) + std::uint32_t(detail::lowest_bit(lm.mask));
+          if (lm.min < b2 || s_.tri[slot] < s_.tri[best]) {
+            b2 = lm.min;
+            best = slot;
+          }
+        }
+        if (has) {
+          lim = bvh::prune_limit(b2, s_.slack);
+          r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+          continue;
+        }
       }
-      s_.template scan_blocks<I>(list.first[i], list.count[i], p, b2, best);
       if (list.count[i] <= std::uint32_t(W) && !pl.planes[j]) {
         T(&nx)[W] = *reinterpret_cast<T(*)[W]>(pl.pnx.data() + j * W);
         T(&ny)[W] = *reinterpret_cast<T(*)[W]>(pl.pny.data() + j * W);
@@ -280,13 +349,13 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
       if (parent == nullptr) {
         MeshTileKernels<I>::collect_leaves(*this, box, lim2, box.center(), list);
       } else {
-        list.clear();
-        for (std::size_t i = 0; i < parent->size(); ++i) {
-          const Aabb<T> lb({parent->lo_x[i], parent->lo_y[i], parent->lo_z[i]},
-                           {parent->hi_x[i], parent->hi_y[i], parent->hi_z[i]});
-          if (box_box_distance2(lb, box) < lim2) list.add_from(*parent, i);
-        }
-        list.pad();
+        // The parent's leaves within the bound: a vectorised box test, then a copy of those.
+        const std::size_t np = parent->lo_x.size();
+        if (job.d2.size() < np) job.d2.resize(np);
+        MeshTileKernels<I>::boxes_box_distance2(
+            np, parent->lo_x.data(), parent->lo_y.data(), parent->lo_z.data(), parent->hi_x.data(),
+            parent->hi_y.data(), parent->hi_z.data(), box, job.d2.data());
+        list.filter_from(*parent, job.d2.data(), lim2);
       }
     }
     if (job.d2.size() < 2 * list.lo_x.size()) job.d2.resize(2 * list.lo_x.size());
@@ -333,6 +402,19 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
       const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx, const T* EBGEOM_RESTRICT hy,       \
       const T* EBGEOM_RESTRICT hz, const Vec3<T>& p, T* EBGEOM_RESTRICT out) noexcept {            \
     boxes_distance2_inline(n, lx, ly, lz, hx, hy, hz, p, out);                                     \
+  }                                                                                                \
+  template <class T>                                                                               \
+  TARGET EBGEOM_VECTOR_KERNEL EBGEOM_NOINLINE static void boxes_box_distance2(                     \
+      std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,                     \
+      const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx, const T* EBGEOM_RESTRICT hy,       \
+      const T* EBGEOM_RESTRICT hz, const Aabb<T>& b, T* EBGEOM_RESTRICT out) noexcept {            \
+    boxes_box_distance2_inline(n, lx, ly, lz, hx, hy, hz, b, out);                                 \
+  }                                                                                                \
+  template <class T, int W>                                                                        \
+  TARGET EBGEOM_VECTOR_KERNEL EBGEOM_NOINLINE static LaneMin<T, W> block_min_planes(               \
+      const TriBlock<T, W>& t, const Vec3<T>& p, T b2, T lim, const T* nx, const T* ny,            \
+      const T* nz, const T* off, T r) noexcept {                                                   \
+    return block_min_planes_inline<T, W, I>(t, p, b2, lim, nx, ny, nz, off, r);                    \
   }                                                                                                \
   template <class E, class Job>                                                                    \
   TARGET static void solve_lattice(const E& e, Job& job, const std::array<std::size_t, 3>& a,      \
