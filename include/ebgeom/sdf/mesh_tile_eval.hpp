@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -86,19 +87,50 @@ namespace detail {
 /// bound's distance with the planes' error margins). The planes bound each triangle's distance
 /// from below (convexity), so a lane failing either test cannot reach `b2`; when some lane passes,
 /// the result is `block_min_inline` over the whole block, as in `block_min_pruned`.
+
 template <class T, int W, Isa I>
 EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE LaneMin<T, W>
 block_min_planes_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T b2, T lim, const T* nx,
                         const T* ny, const T* nz, const T* off, T r) noexcept {
-  LaneMask<W> m = block_box_mask_inline<T, W, I>(t, p, lim);
-  if (nx != nullptr && m != 0) {
+  // Planes first: 4 W values against the block's 9 W, and they reject most blocks.
+  LaneMask<W> m = ~LaneMask<W>(0);
+  if (nx != nullptr) {
     T v[W];
     for (int l = 0; l < W; ++l) v[l] = nx[l] * p.x + ny[l] * p.y + nz[l] * p.z - off[l];
-    m &= lane_mask<LaneCmp::le, I>(v, r);
+    m = lane_mask<LaneCmp::le, I>(v, r);
+    if (m == 0) return {b2, 0};
   }
+  m &= block_box_mask_inline<T, W, I>(t, p, lim);
   if (m == 0) return {b2, 0};
   return block_min_inline<T, W, I>(t, p, b2);
 }
+
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+/// The indices i < n (n a multiple of 64 / sizeof(T): whole registers) with `d2[i] < lim`, in
+/// increasing order, written from `idx[0]` on; returns their count. Compresses each register's
+/// indices in registers and stores whole registers (compress stores to memory are slow on some
+/// CPUs): `idx` needs room for 16 more entries than the count.
+template <class T>
+EBGEOM_TARGET_AVX512 EBGEOM_NOINLINE std::size_t
+indices_below_avx512(const T* EBGEOM_RESTRICT d2, std::size_t n, T lim,
+                     std::uint32_t* EBGEOM_RESTRICT idx) noexcept {
+  std::size_t m = 0;
+  const __m512i step = _mm512_set1_epi32(sizeof(T) == 4 ? 16 : 8);
+  __m512i ids = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  constexpr std::size_t lanes = 64 / sizeof(T);
+  for (std::size_t i = 0; i < n; i += lanes) {
+    std::uint32_t k;
+    if constexpr (sizeof(T) == 4)
+      k = _mm512_cmp_ps_mask(_mm512_loadu_ps(d2 + i), _mm512_set1_ps(lim), _CMP_LT_OQ);
+    else
+      k = _mm512_cmp_pd_mask(_mm512_loadu_pd(d2 + i), _mm512_set1_pd(lim), _CMP_LT_OQ);
+    _mm512_storeu_si512(idx + m, _mm512_maskz_compress_epi32(__mmask16(k), ids));
+    m += std::size_t(_mm_popcnt_u32(k));
+    ids = _mm512_add_epi32(ids, step);
+  }
+  return m;
+}
+#endif
 
 template <Isa I> struct MeshTileKernels;
 
@@ -259,12 +291,21 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
     const T rel = T(256) * std::numeric_limits<T>::epsilon();
     T lim = bvh::prune_limit(b2, s_.slack);
     T r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+    T lim_b2 = b2; // the b2 that lim and r were computed from
     // Branch-free compaction of the boxes within the bound (few of them), then the scan.
     std::uint32_t* EBGEOM_RESTRICT idx = reinterpret_cast<std::uint32_t*>(d2 + np);
     std::size_t m = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      idx[m] = std::uint32_t(i);
-      m += d2[i] < lim;
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+    if constexpr (I == Isa::avx512 && (std::is_same_v<T, float> || std::is_same_v<T, double>)) {
+      // Padding boxes (at infinity) never pass.
+      m = indices_below_avx512(d2, np, lim, idx);
+    } else
+#endif
+    {
+      for (std::size_t i = 0; i < n; ++i) {
+        idx[m] = std::uint32_t(i);
+        m += d2[i] < lim;
+      }
     }
     for (std::size_t k = 0; k < m; ++k) {
       const std::size_t i = idx[k];
@@ -290,8 +331,11 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
           }
         }
         if (has) {
-          lim = bvh::prune_limit(b2, s_.slack);
-          r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+          if (b2 != lim_b2) {
+            lim_b2 = b2;
+            lim = bvh::prune_limit(b2, s_.slack);
+            r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+          }
           continue;
         }
       }
@@ -303,8 +347,11 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
         block_planes<T, W, I>(s_.blocks[list.first[i]], p, nx, ny, nz, of);
         pl.planes[j] = 1;
       }
-      lim = bvh::prune_limit(b2, s_.slack);
-      r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+      if (b2 != lim_b2) {
+        lim_b2 = b2;
+        lim = bvh::prune_limit(b2, s_.slack);
+        r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
+      }
     }
     return best;
   }
@@ -358,7 +405,8 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
         list.filter_from(*parent, job.d2.data(), lim2);
       }
     }
-    if (job.d2.size() < 2 * list.lo_x.size()) job.d2.resize(2 * list.lo_x.size());
+    // Box distances, then their indices (and 16 entries of slack, `indices_below_avx512`).
+    if (job.d2.size() < 2 * list.lo_x.size() + 16) job.d2.resize(2 * list.lo_x.size() + 16);
     if (list.size() > lattice_split_leaves && nsamples > 8 && level < 7) {
       std::array<std::size_t, 3> m;
       for (int d = 0; d < 3; ++d) m[d] = b[d] - a[d] > 1 ? (a[d] + b[d]) / 2 : b[d];
