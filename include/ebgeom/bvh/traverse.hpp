@@ -182,14 +182,23 @@ inline int order_children(const T (&d2)[K], T lim, std::uint64_t (&key)[K]) noex
 }
 } // namespace detail
 
+/// No prefetching (the default hook of `nearest`).
+struct NoPrefetch {
+  void operator()(ChildRef) const noexcept {}
+};
+
 /// Nearest-first branch and bound (see the file comment). `best2` is in/out: the initial bound and
 /// the final best squared distance the leaf callback reported.
 /// A point with a NaN or infinite coordinate visits nothing (`best2` is left as it was): its box
 /// distances are NaN or inf - inf, which would otherwise select empty children.
 /// `I`: the instruction set of the box tests (`core/isa.hpp`; the caller's kernel target).
-template <bool Shrink = false, Isa I = native_isa, class T, int K, class BV, class LeafFn>
+/// `prefetch(child)` is called for each child that survives a node's box test, nearest first, when
+/// the node is expanded (before any of them is visited): a hook to start loading what the visit
+/// will read (the search's own order and results do not depend on it).
+template <bool Shrink = false, Isa I = native_isa, class T, int K, class BV, class LeafFn,
+          class PrefetchFn = NoPrefetch>
 void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf,
-             T abs_slack = T(0)) noexcept {
+             T abs_slack = T(0), PrefetchFn prefetch = {}) noexcept {
   if (bvh.root.is_empty() || !all_finite(p)) return;
   if (bvh.root.is_leaf()) {
     if (bvh.box.distance2(p) < prune_limit(best2, abs_slack))
@@ -223,6 +232,7 @@ void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& 
       std::uint64_t key[K];
       const int m = detail::order_children<T, K, I>(d2, lim, key);
       if (m > 0) {
+        for (int j = 0; j < m; ++j) prefetch(n.child[key[j] & 0xffu]);
         for (int j = m - 1; j > 0; --j) {
           const int k = int(key[j] & 0xffu);
           todo.push({n.child[k], d2[k]});

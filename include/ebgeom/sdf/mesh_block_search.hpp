@@ -7,6 +7,7 @@
 /// block scanned with `block_min`. Shared by the per-point queries and tile evaluation
 /// (`sdf/mesh_tile_eval.hpp`).
 
+#include <cstddef>
 #include <cstdint>
 
 #include "ebgeom/bvh/simd_nodes.hpp" // <immintrin.h> where the target has SSE2 / AVX
@@ -37,7 +38,21 @@ template <class T, int K, int W> struct BlockSearch {
         [&](std::uint32_t first_block, std::uint32_t count, T& b2) noexcept {
           scan_blocks<I>(first_block, count, p, b2, best);
         },
-        slack);
+        slack, [this](bvh::ChildRef c) noexcept { prefetch(c); });
+  }
+
+  /// Starts loading what visiting child `c` reads: an inner node's boxes, or a leaf's first block
+  /// (all its cache lines: the box test reads every coordinate). A block and a node are each read
+  /// from memory at once instead of line after line, and blocks and nodes still on the stack
+  /// arrive while others are scanned.
+  EBGEOM_FORCE_INLINE void prefetch(bvh::ChildRef c) const noexcept {
+    if (c.is_leaf()) {
+      const char* b = reinterpret_cast<const char*>(blocks + c.index);
+      for (std::size_t o = 0; o < sizeof(TriBlock<T, W>); o += 64) detail::prefetch(b + o);
+    } else {
+      const char* n = reinterpret_cast<const char*>(bvh->nodes.data() + c.index);
+      for (std::size_t o = 0; o < sizeof(bvh->nodes[0]); o += 64) detail::prefetch(n + o);
+    }
   }
 
   /// Scans blocks [first, first + ceil(count / W)) at `p`, lowering `b2`/`best` (ties: lowest
@@ -60,6 +75,7 @@ template <class T, int K, int W> struct BlockSearch {
       if (lm.min < b2 || tri[slot] < tri[best]) {
         b2 = lm.min;
         best = slot;
+        detail::prefetch(tri + slot); // read by the caller's finish if it stays the best
       }
     }
   }

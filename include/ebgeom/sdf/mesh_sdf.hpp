@@ -296,9 +296,16 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     MeshClosestPoint<T> r;
     if (best == bvh::ChildRef::none) return r;
     const std::uint32_t t = block_tri_[best];
-    const auto& tri = mesh_.triangles[t];
+    // What the pseudonormal of any feature reads, loaded while the closest point is computed.
+    detail::prefetch(mesh_.face_normals.data() + t);
+    detail::prefetch(mesh_.triangles.data() + t);
+    detail::prefetch(mesh_.edge_links.data() + t);
+    // The corners as the block holds them (the mesh's values, copied by `fill_blocks`): the
+    // search has just read that block, where the mesh's arrays would be a cache miss each.
+    const TriBlock<T, W>& b = blocks_[best / std::uint32_t(W)];
+    const int l = int(best % std::uint32_t(W));
     const TriangleClosestPoint<T> cp = closest_point_triangle(
-        p, mesh_.vertices[tri[0]], mesh_.vertices[tri[1]], mesh_.vertices[tri[2]]);
+        p, {b.ax[l], b.ay[l], b.az[l]}, {b.bx[l], b.by[l], b.bz[l]}, {b.cx[l], b.cy[l], b.cz[l]});
     r.distance =
         signed_distance_from(p, cp.point, cp.distance2, feature_pseudonormal(mesh_, t, cp.feature));
     r.point = cp.point;

@@ -52,6 +52,29 @@ template <class T, int K> void nearest_variants_match(BuildMethod m) {
     run([](auto&&... a) { nearest<true>(a...); });
     run([](auto&&... a) { experimental::nearest_unordered(a...); });
     run([](auto&&... a) { experimental::nearest_recursive(a...); });
+    // With a prefetch hook: the same result; the hook sees only real children, and every leaf the
+    // search scans was announced to it before.
+    {
+      std::vector<std::uint32_t> announced;
+      bool bad = false;
+      T best2 = std::numeric_limits<T>::infinity();
+      nearest(
+          w, q, best2,
+          [&](std::uint32_t first, std::uint32_t count, T& b2) {
+            if (!w.root.is_leaf() &&
+                std::find(announced.begin(), announced.end(), first) == announced.end())
+              bad = true;
+            for (std::uint32_t s = first; s < first + count; ++s)
+              b2 = std::min(b2, norm2(pts[w.prim[s]] - q));
+          },
+          T(0),
+          [&](ChildRef c) {
+            if (c.is_empty() || (!c.is_leaf() && c.index >= w.nodes.size())) bad = true;
+            if (c.is_leaf()) announced.push_back(c.index);
+          });
+      EXPECT_FALSE(bad);
+      EXPECT_EQ(best2, ref.dist2);
+    }
   }
 }
 } // namespace
