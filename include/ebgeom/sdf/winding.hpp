@@ -403,6 +403,7 @@ template <class T, int K = 4> class FastWindingNumber {
     }
     w.n_ = n;
     w.nodes_.resize(w.bvh_.nodes.size());
+    w.range_nodes_.resize(w.bvh_.nodes.size());
     if (w.bvh_.root.is_inner()) w.fill_node(w.bvh_.root.index);
     return w;
   }
@@ -667,7 +668,8 @@ template <class T, int K = 4> class FastWindingNumber {
   const bvh::WideBvh<T, K>& tree() const noexcept { return bvh_; }
   /// Heap bytes: triangles, BVH nodes and slots, cluster data.
   std::size_t memory_bytes() const noexcept {
-    return tri_.size() * sizeof(T) + bvh_.memory_bytes() + nodes_.size() * sizeof(nodes_[0]);
+    return tri_.size() * sizeof(T) + bvh_.memory_bytes() + nodes_.size() * sizeof(nodes_[0]) +
+           range_nodes_.size() * sizeof(RangeNode);
   }
 
  private:
@@ -774,37 +776,54 @@ template <class T, int K = 4> class FastWindingNumber {
           {double(t[6 * n + i]), double(t[7 * n + i]), double(t[8 * n + i])});
   }
 
-  /// Adds the far field of child `k` of cluster node `c` over the box, at points farther than
-  /// sqrt(`far2_low`) from its centre and `dmin` from the box (`whole`: every point of the box).
+  /// Per child of a node, the constants of `far_range` that cost square roots, in T (the
+  /// moments' own precision) rounded outwards: |N| and the Frobenius norm |M| of the stored
+  /// moments rounded up, and the distance beyond which every query takes the child's far field
+  /// rounded down (12 B per child in float).
+  struct RangeNode {
+    T nrm[K], fro[K], dfar[K];
+  };
+  static T round_up(double v) noexcept {
+    const T f = T(v);
+    return double(f) < v ? std::nextafter(f, std::numeric_limits<T>::infinity()) : f;
+  }
+  static T round_down(double v) noexcept {
+    const T f = T(v);
+    return double(f) > v ? std::nextafter(f, -std::numeric_limits<T>::infinity()) : f;
+  }
+
+  /// Adds the far field of child `k` of cluster node `c` (constants `rc`) over the box, at points
+  /// farther than `rc.dfar[k]` from its centre and `dmin` from the box (`whole`: every point of
+  /// the box).
   /// With r = centre - p, the term is N·r / r³ + g(r) / r⁵, g = tr M r² - 3 rᵀ M r (`operator()`):
   /// = -N·∇(1/r) - Σ M_ij ∂_ij(1/r): a model with gradient bound 2 |N| / r³ + 6 √3 |M| / r⁴ and
   /// Hessian bound 6 |N| / r⁴ + 24 √3 |M| / r⁵ (|∂ᵏ(1/r)| <= k! / r^(k+1), `add_triangle_range`;
   /// a contraction with M is at most its nuclear norm <= √3 |M|, the Frobenius norm); for some
   /// points only (`whole` false) an interval capped by |term| <= |N| / r² + (|tr M| + 3 |M|) / r³.
-  void far_range(detail::RangeSum& fv, const detail::RangeBox& x, const WindingNode<T, K>& c, int k,
-                 bool whole, double dmin_raw, double far2_low) const noexcept {
+  void far_range(detail::RangeSum& fv, const detail::RangeBox& x, const WindingNode<T, K>& c,
+                 const RangeNode& rc, int k, bool whole, double dmin_raw) const noexcept {
     constexpr double i4p = 0.07957747154594767;
     const Vec3<double> ctr{double(c.cx[k]), double(c.cy[k]), double(c.cz[k])};
     const double dmin = dmin_raw * (1 - 1e-12);
-    const double dlow = std::max(dmin, std::sqrt(far2_low) * (1 - 1e-12));
-    const Vec3<double> nn{double(c.nx[k]), double(c.ny[k]), double(c.nz[k])};
-    double mm[3][3], fro2 = 0;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        mm[i][j] = double(c.m[3 * i + j][k]);
-        fro2 += mm[i][j] * mm[i][j];
-      }
-    const double tr = mm[0][0] + mm[1][1] + mm[2][2], fro = std::sqrt(fro2) * (1 + 1e-12);
-    const double nrm = norm(nn) * (1 + 1e-12);
+    const double dlow = std::max(dmin, double(rc.dfar[k]));
+    const double nrm = double(rc.nrm[k]), fro = double(rc.fro[k]);
+    const double tr = double(c.m[0][k]) + double(c.m[4][k]) + double(c.m[8][k]);
     if (!(dlow > 0)) {
       fv.ok = false;
       return;
     }
+    // Products with reciprocals instead of quotients: a few more roundings, far inside the
+    // relative 1e-12 by which dmin and dlow are shrunk.
+    const double il = 1 / dlow, il2 = il * il, il3 = il2 * il;
     // Intermediate magnitudes of the far-field formula: |N|/r², and Σ |M_ij| <= 3 |M|_F.
-    fv.mag = (nrm / (dlow * dlow) + (std::abs(tr) + 9 * fro) / (dlow * dlow * dlow)) * i4p;
+    fv.mag = (nrm * il2 + (std::abs(tr) + 9 * fro) * il3) * i4p;
     fv.terms = 2; // the term and its share of the per-node sum
     detail::RangeSum m;
     if (dmin > 0) {
+      const Vec3<double> nn{double(c.nx[k]), double(c.ny[k]), double(c.nz[k])};
+      double mm[3][3];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) mm[i][j] = double(c.m[3 * i + j][k]);
       const Vec3<double> r = ctr - x.c;
       const double r2 = dot(r, r), ir = 1 / std::sqrt(r2), ir2 = ir * ir;
       const double ir3 = ir2 * ir, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
@@ -820,17 +839,16 @@ template <class T, int K = 4> class FastWindingNumber {
       const Vec3<double> dg = r * (2 * tr) - (mr + mtr) * 3.0;
       const Vec3<double> gr = nn * ir3 - r * (3 * dot(nn, r) * ir5) + dg * ir5 - r * (5 * g * ir7);
       m.grad = gr * -i4p;
-      const double d3 = dmin * dmin * dmin, d4 = d3 * dmin;
-      m.grad1 = (2 * nrm / d3 + 10.4 * fro / d4) * i4p;
-      m.hess = (6 * nrm / d4 + 41.6 * fro / (d4 * dmin)) * i4p;
+      const double id = 1 / dmin, id3 = id * id * id, id4 = id3 * id;
+      m.grad1 = (2 * nrm * id3 + 10.4 * fro * id4) * i4p;
+      m.hess = (6 * nrm * id4 + 41.6 * fro * (id4 * id)) * i4p;
     }
     if (whole && dmin > 0) {
       m.mag = fv.mag, m.terms = fv.terms;
       fv = m;
       return;
     }
-    const double cap =
-        (nrm / (dlow * dlow) + (std::abs(tr) + 3 * fro) / (dlow * dlow * dlow)) * i4p * (1 + 1e-12);
+    const double cap = (nrm * il2 + (std::abs(tr) + 3 * fro) * il3) * i4p * (1 + 1e-12);
     double lo = -cap, hi = cap;
     if (dmin > 0) {
       double mlo, mhi;
@@ -848,6 +866,7 @@ template <class T, int K = 4> class FastWindingNumber {
     const double e = 16 * double(std::numeric_limits<T>::epsilon());
     detail::RangeSum s;
     const WindingNode<T, K>& c = nodes_[ni];
+    const RangeNode& rc = range_nodes_[ni];
     const bvh::WideNode<T, K>& node = bvh_.nodes[ni];
     for (int k = 0; k < K && s.ok; ++k) {
       const bvh::ChildRef r = node.child[k];
@@ -858,7 +877,7 @@ template <class T, int K = 4> class FastWindingNumber {
       const bool all_far = dmin2 * (1 - e) > far2;
       const bool all_near = dmax2 * (1 + e) <= far2;
       detail::RangeSum fv, nv;
-      if (!all_near) far_range(fv, x, c, k, all_far, std::sqrt(dmin2), far2 / (1 + e));
+      if (!all_near) far_range(fv, x, c, rc, k, all_far, std::sqrt(dmin2));
       if (!all_far) {
         if (r.is_leaf())
           leaf_range(nv, x, r.index, r.count);
@@ -918,10 +937,24 @@ template <class T, int K = 4> class FastWindingNumber {
       if (r.is_inner()) fill_node(r.index);
     }
     nodes_[ni] = wn;
+    // The constants of `far_range`, from the stored (rounded) moments.
+    RangeNode rn{};
+    const double e = 16 * double(std::numeric_limits<T>::epsilon()); // as in `node_range`
+    for (int k = 0; k < K; ++k) {
+      double fro2 = 0;
+      for (int i = 0; i < 9; ++i) fro2 += double(wn.m[i][k]) * double(wn.m[i][k]);
+      const Vec3<double> nn{double(wn.nx[k]), double(wn.ny[k]), double(wn.nz[k])};
+      rn.nrm[k] = round_up(norm(nn) * (1 + 1e-12));
+      rn.fro[k] = round_up(std::sqrt(fro2) * (1 + 1e-12));
+      // A query calls a cluster far beyond sqrt(far2) / (1 + e) at least (`node_range`).
+      rn.dfar[k] = round_down(std::sqrt(double(wn.far2[k]) / (1 + e)) * (1 - 1e-12));
+    }
+    range_nodes_[ni] = rn;
   }
 
   bvh::WideBvh<T, K> bvh_;
   std::vector<WindingNode<T, K>> nodes_; ///< parallel to bvh_.nodes
+  std::vector<RangeNode> range_nodes_;   ///< parallel to bvh_.nodes
   std::vector<T> tri_;                   ///< 9 arrays of n: ax, ay, az, bx, ..., cz in leaf order
   std::size_t n_ = 0;
   double beta_ = 2;
