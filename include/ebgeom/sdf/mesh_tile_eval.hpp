@@ -434,7 +434,7 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
         }
   }
 
-  static constexpr std::size_t lattice_split_leaves = 128;
+  static constexpr std::size_t lattice_split_leaves = 256;
 
   BlockSearch<T, K, W> s_;
   T plane_margin_;
