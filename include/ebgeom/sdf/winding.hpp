@@ -600,6 +600,12 @@ template <class T, int K = 4> class FastWindingNumber {
           is_far[j] = r2 > far2;
           len[j] = is_far[j] ? r2 : T(1);
         }
+        std::uint32_t bits = 0;
+        for (int j = 0; j < P; ++j) bits |= std::uint32_t(is_far[j]) << j;
+        far_bits[k] = bits;
+        // A child no point of the packet takes as far adds +0 to every f[j], which leaves it as
+        // it is (f starts at +0 and a sum is -0 only when both terms are): skip its far fields.
+        if ((bits & it.mask) == 0) continue;
         detail::sqrt_lanes<P>(len);
         for (int j = 0; j < P; ++j) {
           const T inv_r = T(1) / len[j];
@@ -611,9 +617,6 @@ template <class T, int K = 4> class FastWindingNumber {
           const T v = order1 + (trace - T(3) * quad) * inv_r2 * inv_r;
           f[j] += is_far[j] ? v : T(0);
         }
-        std::uint32_t bits = 0;
-        for (int j = 0; j < P; ++j) bits |= std::uint32_t(is_far[j]) << j;
-        far_bits[k] = bits;
       }
       for (int j = 0; j < P; ++j) {
         const T a = far_sum[j] + f[j] * inv4pi_t;
