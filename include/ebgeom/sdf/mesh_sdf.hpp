@@ -48,7 +48,8 @@ namespace ebgeom {
 /// - Sign: the pseudonormal of the closest feature (Bærentzen & Aanæs 2005): exact for closed,
 ///   consistently oriented, manifold meshes (check with `validate`).
 /// - Memory: the `TriangleMesh` (~48 B/triangle in float) + blocks (36 B per lane, leaves padded
-///   to whole blocks) + 4 B per lane of triangle ids + nodes; `memory_bytes()` reports it.
+///   to whole blocks) + 4 B per lane of triangle ids + nodes + a seed grid of 8³ triangles
+///   (18 KB in float, 36 KB in double, whatever the mesh's size); `memory_bytes()` reports it.
 /// - Queries are O(log n) on average, allocation-free, and thread-safe (immutable object).
 template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
  public:
@@ -88,6 +89,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
         bvh::build(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(centroids), options));
     s.pack_blocks();
     s.slack_ = rounding_slack(s.bvh_.box);
+    s.fill_seeds();
     s.plane_margin_ = plane_margin(s.bvh_.box);
     return s;
   }
@@ -134,7 +136,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     if (!all_finite(p)) return std::numeric_limits<T>::quiet_NaN();
     T best2 = std::numeric_limits<T>::infinity();
     std::uint32_t best = bvh::ChildRef::none;
-    nearest_slot(p, best2, best);
+    seeded_nearest_slot(p, best2, best);
     return std::sqrt(best2);
   }
 
@@ -191,6 +193,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
         b.extend(mesh_.triangle_bounds(block_tri_[first_block * std::size_t(W) + s]));
       return b;
     });
+    fill_seeds();
     return {};
   }
 
@@ -202,7 +205,8 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
   /// Heap bytes of the mesh, the blocks, the block triangle ids and the BVH nodes.
   std::size_t memory_bytes() const noexcept {
     return mesh_.memory_bytes() + blocks_.size() * sizeof(TriBlock<T, W>) +
-           block_tri_.size() * sizeof(std::uint32_t) + bvh_.memory_bytes();
+           block_tri_.size() * sizeof(std::uint32_t) +
+           seed_tri_.size() * sizeof(std::array<Vec3<T>, 3>) + bvh_.memory_bytes();
   }
 
  private:
@@ -287,8 +291,72 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     }
     T best2 = bound2;
     std::uint32_t best = bvh::ChildRef::none;
-    nearest_slot(p, best2, best);
+    seeded_nearest_slot(p, best2, best);
     return finish(p, best);
+  }
+
+  /// `nearest_slot` from an initial bound lowered by the seed of `p`'s cell (`fill_seeds`): the
+  /// squared distance to the triangle nearest to the cell's centre, computed as `finish` computes
+  /// it and raised by the search's pruning slack twice over, so that the block kernel's value of
+  /// that triangle, and so the minimum, lies strictly below it (the search's own assumption on the
+  /// kernel's rounding). The search then returns what it returns from `best2` itself: every
+  /// triangle at the minimum distance is below both bounds. A tighter first bound than the first
+  /// leaf's prunes more of the tree before the nearest leaf is reached.
+  void seeded_nearest_slot(const Vec3<T>& p, T& best2, std::uint32_t& best) const noexcept {
+    const T bound2 = best2;
+    bool seeded = false;
+    if (!seed_tri_.empty()) {
+      int c[3];
+      for (int k = 0; k < 3; ++k) {
+        T f = (p[k] - seed_lo_[k]) * seed_scale_[k];
+        f = f > T(0) ? f : T(0); // NaN (inf * 0 on a flat axis) too
+        f = f < T(seed_cells - 1) ? f : T(seed_cells - 1);
+        c[k] = int(f);
+      }
+      const std::array<Vec3<T>, 3>& t =
+          seed_tri_[std::size_t((c[2] * seed_cells + c[1]) * seed_cells + c[0])];
+      const T d2 = closest_point_triangle(p, t[0], t[1], t[2]).distance2;
+      const T seed2 = bvh::prune_limit(d2, T(2) * slack_);
+      if (seed2 < best2) best2 = seed2, seeded = true;
+    }
+    nearest_slot(p, best2, best);
+    if (seeded && best == bvh::ChildRef::none) { // never expected: the seed's own triangle is
+      best2 = bound2;                            // below its bound
+      nearest_slot(p, best2, best);
+    }
+  }
+
+  /// Cells per axis of the seed grid.
+  static constexpr int seed_cells = 8;
+
+  /// The seed grid: over the mesh's box, `seed_cells`³ cells, each holding the corners of the
+  /// triangle nearest to its centre (a query outside the box takes the nearest cell).
+  void fill_seeds() {
+    const Aabb<T> box = bvh_.box;
+    const Vec3<T> e = box.extent();
+    seed_lo_ = box.lo;
+    for (int k = 0; k < 3; ++k) seed_scale_[k] = e[k] > T(0) ? T(seed_cells) / e[k] : T(0);
+    seed_tri_.assign(std::size_t(seed_cells) * seed_cells * seed_cells, {});
+    for (int z = 0; z < seed_cells; ++z)
+      for (int y = 0; y < seed_cells; ++y)
+        for (int x = 0; x < seed_cells; ++x) {
+          const int i[3] = {x, y, z};
+          Vec3<T> c;
+          for (int k = 0; k < 3; ++k)
+            c[k] = box.lo[k] + e[k] * ((T(i[k]) + T(0.5)) / T(seed_cells));
+          T best2 = std::numeric_limits<T>::infinity();
+          std::uint32_t best = bvh::ChildRef::none;
+          nearest_slot(c, best2, best);
+          if (best == bvh::ChildRef::none) { // a non-finite centre (a box beyond the range of T)
+            seed_tri_.clear();
+            return;
+          }
+          const TriBlock<T, W>& b = blocks_[best / std::uint32_t(W)];
+          const int l = int(best % std::uint32_t(W));
+          seed_tri_[std::size_t((z * seed_cells + y) * seed_cells + x)] = {
+              Vec3<T>{b.ax[l], b.ay[l], b.az[l]}, Vec3<T>{b.bx[l], b.by[l], b.bz[l]},
+              Vec3<T>{b.cx[l], b.cy[l], b.cz[l]}};
+        }
   }
 
   /// Signed distance etc. at `p` from its nearest slot (as `search`).
@@ -332,6 +400,11 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
 
   TriangleMesh<T> mesh_;
   T slack_ = 0;
+  Vec3<T> seed_lo_{0, 0, 0};    ///< seed grid: lower corner
+  Vec3<T> seed_scale_{0, 0, 0}; ///< seed grid: cells per unit length, per axis
+  /// Seed grid: per cell, the corners of the triangle nearest to its centre (`fill_seeds`; a few
+  /// tens of KB, which stay in cache from query to query).
+  std::vector<std::array<Vec3<T>, 3>> seed_tri_;
   T plane_margin_ = 0;
   bvh::WideBvh<T, K> bvh_;
   std::vector<TriBlock<T, W>> blocks_;

@@ -100,6 +100,46 @@ TYPED_TEST(MeshSdfTest, ClosestWithinIsANarrowBand) {
   EXPECT_EQ(sdf.closest_within({0, 0, 0}, T(-1)).triangle, MeshClosestPoint<T>::invalid_triangle);
 }
 
+// Queries start from the bound of a seed triangle (the one nearest to the centre of the query's
+// cell in an 8^3 grid over the box): equal to the brute force where that seed is itself the
+// nearest triangle or ties with others (cell centres, a cube's symmetric points), far outside the
+// grid (nearest cell), and on a mesh far from the origin (float rounding of large coordinates).
+TYPED_TEST(MeshSdfTest, SeededSearchEqualsBruteForceAtCellCentresFarAwayAndOffset) {
+  using T = TypeParam;
+  PolygonSoup<T> offset = torus<T>();
+  for (auto& v : offset.vertices) v = v + Vec3<T>{T(3e3), T(-1e3), T(500)};
+  for (const PolygonSoup<T>& soup : {torus<T>(), offset, make_cube<T>(T(1)).value()}) {
+    const auto sdf = MeshSdf<T>::build(soup).value();
+    const auto ref = BruteForceMeshSdf<T>::build(soup).value();
+    const Aabb<T> box = sdf.bounds();
+    const Vec3<T> e = box.extent();
+    std::vector<Vec3<T>> pts;
+    for (int z = 0; z <= 8; ++z)
+      for (int y = 0; y <= 8; ++y)
+        for (int x = 0; x <= 8; ++x) {
+          const int i[3] = {x, y, z};
+          Vec3<T> centre, corner;
+          for (int k = 0; k < 3; ++k) {
+            centre[k] = box.lo[k] + e[k] * ((T(i[k]) + T(0.5)) / T(8)); // as the grid's seeds
+            corner[k] = box.lo[k] + e[k] * (T(i[k]) / T(8));            // cell boundaries
+          }
+          pts.push_back(centre);
+          pts.push_back(corner);
+          pts.push_back(box.center() + (centre - box.center()) * T(1e3)); // far away
+        }
+    pts.push_back(box.center());
+    for (const auto& p : pts) {
+      const auto a = sdf.closest(p), b = ref.closest(p);
+      ASSERT_TRUE(same_bits(a.distance, b.distance)) << p << " " << a.distance << " " << b.distance;
+      EXPECT_EQ(a.triangle, b.triangle) << p;
+      EXPECT_TRUE(same_bits(sdf.unsigned_distance(p), std::abs(b.distance))) << p;
+      EXPECT_TRUE(
+          same_bits(sdf.closest_within(p, T(2) * std::abs(b.distance) + T(1)).distance, b.distance))
+          << p;
+    }
+  }
+}
+
 TYPED_TEST(MeshSdfTest, DegenerateMeshes) {
   using T = TypeParam;
   auto tri_soup = [](std::vector<Vec3<T>> v, std::vector<Index> idx) {
