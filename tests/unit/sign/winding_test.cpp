@@ -198,14 +198,20 @@ template <class T, int K> void expect_packets_equal_points(const TriangleMesh<T>
     }
 }
 
+/// Three open meshes (holes cut by `remove_cap`) and a closed one, for the packet tests.
+template <class T> std::vector<std::pair<const char*, PolygonSoup<T>>> packet_meshes() {
+  std::vector<std::pair<const char*, PolygonSoup<T>>> m;
+  m.emplace_back("open bowl", test::remove_cap(make_icosphere<T>(4).value(), T(0.3)));
+  m.emplace_back("open torus", test::remove_cap(make_torus<T>(1, T(0.3), 48, 16).value(), T(0.1)));
+  m.emplace_back("open box", test::remove_cap(
+                                 make_box<T>({-1, -0.7f, -0.5f}, {1, 0.7f, 0.5f}).value(), T(0.4)));
+  m.emplace_back("closed ball", make_icosphere<T>(3).value());
+  return m;
+}
+
 TYPED_TEST(WindingTest, PacketsAreThePerPointValuesBitForBit) {
   using T = TypeParam;
-  const std::pair<const char*, PolygonSoup<T>> meshes[] = {
-      {"open bowl", test::remove_cap(make_icosphere<T>(4).value(), T(0.3))},
-      {"open torus", test::remove_cap(make_torus<T>(1, T(0.3), 48, 16).value(), T(0.1))},
-      {"open box",
-       test::remove_cap(make_box<T>({-1, -0.7f, -0.5f}, {1, 0.7f, 0.5f}).value(), T(0.4))},
-      {"closed ball", make_icosphere<T>(3).value()}};
+  const auto meshes = packet_meshes<T>();
   for (const auto& [name, soup] : meshes) {
     SCOPED_TRACE(name);
     const TriangleMesh<T> m = make_triangle_mesh(soup).value();
@@ -341,12 +347,7 @@ void expect_bounds_hold(const TriangleMesh<T>& m, int leaf, int& undecided) {
 
 TYPED_TEST(WindingTest, SignBoundsHoldAndDecideAsThePerPointValues) {
   using T = TypeParam;
-  const std::pair<const char*, PolygonSoup<T>> meshes[] = {
-      {"open bowl", test::remove_cap(make_icosphere<T>(4).value(), T(0.3))},
-      {"open torus", test::remove_cap(make_torus<T>(1, T(0.3), 48, 16).value(), T(0.1))},
-      {"open box",
-       test::remove_cap(make_box<T>({-1, -0.7f, -0.5f}, {1, 0.7f, 0.5f}).value(), T(0.4))},
-      {"closed ball", make_icosphere<T>(3).value()}};
+  const auto meshes = packet_meshes<T>();
   int undecided = 0;
   for (const auto& [name, soup] : meshes) {
     SCOPED_TRACE(name);
