@@ -34,6 +34,7 @@
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/aabb.hpp"
 #include "ebgeom/core/config.hpp"
+#include "ebgeom/core/isa.hpp"
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
@@ -271,11 +272,11 @@ template <class T> EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE T winding_sqrt(T x)
 #endif
 }
 
-/// x[j] = sqrt(x[j]) for j < N (N a multiple of 8), correctly rounded as `std::sqrt`: vector
-/// square roots where the instruction set has them (the loop with `std::sqrt` does not vectorise
-/// where `errno` is set).
+/// x[j] = sqrt(x[j]) for j < N (N a multiple of 8), correctly rounded as `std::sqrt`, with the
+/// translation unit's own instruction set: vector square roots where it has them (the loop with
+/// `std::sqrt` does not vectorise where `errno` is set).
 template <int N, class T>
-EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void sqrt_lanes(T* EBGEOM_RESTRICT x) noexcept {
+EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void sqrt_lanes_native(T* EBGEOM_RESTRICT x) noexcept {
   static_assert(N % 8 == 0, "sqrt_lanes: N must be a multiple of 8");
 #if defined(__AVX512F__)
   if constexpr (sizeof(T) == sizeof(float) && N % 16 != 0) {
@@ -301,6 +302,52 @@ EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void sqrt_lanes(T* EBGEOM_RESTRICT x) 
   }
 #else
   for (int j = 0; j < N; ++j) x[j] = winding_sqrt(x[j]);
+#endif
+}
+
+#if EBGEOM_ISA_DISPATCH
+/// `sqrt_lanes_native` with AVX (the dispatched AVX2 kernels). Not forced inline (an AVX function
+/// inlines only into AVX code): it inlines into the kernels of the same target and options.
+template <int N, class T>
+EBGEOM_TARGET_AVX2 EBGEOM_WINDING_KERNEL inline void
+sqrt_lanes_avx2(T* EBGEOM_RESTRICT x) noexcept {
+  if constexpr (sizeof(T) == sizeof(float)) {
+    for (int j = 0; j < N; j += 8) _mm256_storeu_ps(x + j, _mm256_sqrt_ps(_mm256_loadu_ps(x + j)));
+  } else {
+    for (int j = 0; j < N; j += 4) _mm256_storeu_pd(x + j, _mm256_sqrt_pd(_mm256_loadu_pd(x + j)));
+  }
+}
+
+/// `sqrt_lanes_native` with AVX-512 (the dispatched AVX-512 kernels), as `sqrt_lanes_avx2`.
+template <int N, class T>
+EBGEOM_TARGET_AVX512 EBGEOM_WINDING_KERNEL inline void
+sqrt_lanes_avx512(T* EBGEOM_RESTRICT x) noexcept {
+  if constexpr (sizeof(T) == sizeof(float) && N % 16 != 0) {
+    for (int j = 0; j < N; j += 8) _mm256_storeu_ps(x + j, _mm256_sqrt_ps(_mm256_loadu_ps(x + j)));
+  } else if constexpr (sizeof(T) == sizeof(float)) {
+    for (int j = 0; j < N; j += 16)
+      _mm512_storeu_ps(x + j, _mm512_maskz_sqrt_ps(__mmask16(0xFFFF), _mm512_loadu_ps(x + j)));
+  } else {
+    for (int j = 0; j < N; j += 8)
+      _mm512_storeu_pd(x + j, _mm512_maskz_sqrt_pd(__mmask8(0xFF), _mm512_loadu_pd(x + j)));
+  }
+}
+#endif
+
+/// x[j] = sqrt(x[j]) for j < N (N a multiple of 8), correctly rounded as `std::sqrt` (the same
+/// values on every instruction set), in the kernels of instruction set I (`core/isa.hpp`).
+template <Isa I, int N, class T>
+EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void sqrt_lanes(T* EBGEOM_RESTRICT x) noexcept {
+  static_assert(N % 8 == 0, "sqrt_lanes: N must be a multiple of 8");
+#if EBGEOM_ISA_DISPATCH
+  if constexpr (I == Isa::avx512)
+    sqrt_lanes_avx512<N>(x);
+  else if constexpr (I == Isa::avx2)
+    sqrt_lanes_avx2<N>(x);
+  else
+    sqrt_lanes_native<N>(x);
+#else
+  sqrt_lanes_native<N>(x);
 #endif
 }
 
@@ -353,6 +400,31 @@ EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE double atan2_bounded(double y, double 
   // x - x and y - y: 0 for finite inputs, NaN for infinite or NaN ones (the sign of y kept).
   return copysign(t + ((x - x) + (y - y)), y);
 }
+} // namespace detail
+
+namespace detail {
+/// The fast winding number's packet traversal (`FastWindingNumber::eval_packet`, `bound_packet`)
+/// compiled for instruction set I (`core/isa.hpp`): one out-of-line function with I's target
+/// attribute, so that the loops over a packet's points vectorise for that target. The same values
+/// on every instruction set (no contraction into fused multiply-adds, correctly rounded square
+/// roots and divisions).
+#define EBGEOM_WINDING_KERNELS(I, TARGET)                                                          \
+  template <bool Approx, class W, class T>                                                         \
+  TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static void packet_sums(                            \
+      const W& w, const Vec3<T>* pts, int n, T* far_sum, double* near, double* cnt) noexcept {     \
+    w.template packet_sums_inline<Approx, I>(pts, n, far_sum, near, cnt);                          \
+  }
+
+template <Isa I> struct WindingKernels { EBGEOM_WINDING_KERNELS(I, ) };
+#if EBGEOM_ISA_DISPATCH
+template <> struct WindingKernels<Isa::avx2> {
+  EBGEOM_WINDING_KERNELS(Isa::avx2, EBGEOM_TARGET_AVX2)
+};
+template <> struct WindingKernels<Isa::avx512> {
+  EBGEOM_WINDING_KERNELS(Isa::avx512, EBGEOM_TARGET_AVX512)
+};
+#endif
+#undef EBGEOM_WINDING_KERNELS
 } // namespace detail
 
 /// BVH-accelerated generalized winding number (Barill et al. 2018; see the file comment).
@@ -479,7 +551,10 @@ template <class T, int K = 4> class FastWindingNumber {
     }
     alignas(64) T far_sum[P];
     alignas(64) double near[P];
-    packet_sums<false>(pts, n, far_sum, near, nullptr);
+    with_active_isa([&](auto isa) {
+      detail::WindingKernels<decltype(isa)::value>::template packet_sums<false>(
+          *this, pts, n, far_sum, near, nullptr);
+    });
     for (int j = 0; j < n; ++j) out[j] = T(near[j] * inv4pi) + far_sum[j];
   }
 
@@ -495,7 +570,10 @@ template <class T, int K = 4> class FastWindingNumber {
     EBGEOM_ASSERT(n <= P);
     alignas(64) T far_sum[P];
     alignas(64) double near[P], cnt[P];
-    packet_sums<true>(pts, n, far_sum, near, cnt);
+    with_active_isa([&](auto isa) {
+      detail::WindingKernels<decltype(isa)::value>::template packet_sums<true>(*this, pts, n,
+                                                                               far_sum, near, cnt);
+    });
     const T inf = std::numeric_limits<T>::infinity();
     for (int j = 0; j < n; ++j) {
       const double e = sign_bound(near[j], cnt[j]);
@@ -551,12 +629,16 @@ template <class T, int K = 4> class FastWindingNumber {
   }
 
  private:
+  template <Isa> friend struct detail::WindingKernels;
+
   /// The far-field sums (in T) and near sums (in double, radians) of `eval_packet`'s traversal
   /// at `n` points, 1 <= n <= `packet_width`; with `Approx`, the near leaves' angles from
-  /// `detail::atan2_bounded` and cnt[j] the number of solid angles summed at point j.
-  template <bool Approx>
-  EBGEOM_WINDING_KERNEL void packet_sums(const Vec3<T>* pts, int n, T* far_sum, double* near,
-                                         double* cnt) const noexcept {
+  /// `detail::atan2_bounded` and cnt[j] the number of solid angles summed at point j. Inlined into
+  /// the kernels of instruction set I (`detail::WindingKernels`); the same values on every one.
+  template <bool Approx, Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void packet_sums_inline(const Vec3<T>* pts, int n,
+                                                                    T* far_sum, double* near,
+                                                                    double* cnt) const noexcept {
     constexpr int P = packet_width;
     constexpr T inv4pi_t = T(0.07957747154594767);
     alignas(64) T px[P], py[P], pz[P], f[P];
@@ -571,7 +653,7 @@ template <class T, int K = 4> class FastWindingNumber {
     const std::uint32_t all = n >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << n) - 1;
     const bvh::ChildRef root = bvh_.root;
     if (root.is_leaf()) {
-      leaf_sum_packet<Approx>(root.index, root.count, dx, dy, dz, all, near, cnt);
+      leaf_sum_packet<Approx, I>(root.index, root.count, dx, dy, dz, all, near, cnt);
       return;
     }
     if (!root.is_inner()) return;
@@ -606,7 +688,7 @@ template <class T, int K = 4> class FastWindingNumber {
         // A child no point of the packet takes as far adds +0 to every f[j], which leaves it as
         // it is (f starts at +0 and a sum is -0 only when both terms are): skip its far fields.
         if ((bits & it.mask) == 0) continue;
-        detail::sqrt_lanes<P>(len);
+        detail::sqrt_lanes<I, P>(len);
         for (int j = 0; j < P; ++j) {
           const T inv_r = T(1) / len[j];
           const T ux = rx[j] * inv_r, uy = ry[j] * inv_r, uz = rz[j] * inv_r;
@@ -627,7 +709,7 @@ template <class T, int K = 4> class FastWindingNumber {
         if (open == 0) continue;
         const bvh::ChildRef r = node.child[k];
         if (r.is_leaf())
-          leaf_sum_packet<Approx>(r.index, r.count, dx, dy, dz, open, near, cnt);
+          leaf_sum_packet<Approx, I>(r.index, r.count, dx, dy, dz, open, near, cnt);
         else if (r.is_inner())
           todo.push({r.index, open});
       }
@@ -725,8 +807,8 @@ template <class T, int K = 4> class FastWindingNumber {
 
   /// `leaf_sum` at the packet's points whose bit is set in `open`, added to their `near`; with
   /// `Approx`, the angles from `detail::atan2_bounded` and the count of angles in `cnt`.
-  template <bool Approx>
-  EBGEOM_WINDING_KERNEL void
+  template <bool Approx, Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
   leaf_sum_packet(std::uint32_t first, std::uint32_t count, const double* px, const double* py,
                   const double* pz, std::uint32_t open, double* near, double* cnt) const noexcept {
     constexpr int P = packet_width;
@@ -743,9 +825,9 @@ template <class T, int K = 4> class FastWindingNumber {
         lb[j] = dist2(px[j], py[j], pz[j], bx, by, bz);
         lc[j] = dist2(px[j], py[j], pz[j], cx, cy, cz);
       }
-      detail::sqrt_lanes<P>(la);
-      detail::sqrt_lanes<P>(lb);
-      detail::sqrt_lanes<P>(lc);
+      detail::sqrt_lanes<I, P>(la);
+      detail::sqrt_lanes<I, P>(lb);
+      detail::sqrt_lanes<I, P>(lc);
       for (int j = 0; j < P; ++j)
         solid_angle_terms(px[j], py[j], pz[j], ax, ay, az, bx, by, bz, cx, cy, cz, la[j], lb[j],
                           lc[j], num[j], den[j]);

@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "ebgeom/core/isa.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
 #include "sign_support.hpp"
@@ -141,6 +142,25 @@ TEST(WindingBvh, EveryWidthAgrees) {
 
 template <class T> bool same_bits(T a, T b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
+/// Runs `fn()` once per instruction set the packet kernels can run here (`set_isa`: baseline
+/// always, AVX2 and AVX-512 where the CPU has them and the build dispatches), restoring the
+/// active one: the packets must give the per-point values (compiled for the translation unit's
+/// own flags) bit for bit on every one.
+template <class Fn> void for_each_isa(Fn&& fn) {
+  const Isa was = active_isa();
+  int ran = 0;
+  for (Isa i : {Isa::baseline, Isa::avx2, Isa::avx512}) {
+    if (!set_isa(i)) continue;
+    SCOPED_TRACE(to_string(i));
+    ASSERT_EQ(active_isa(), i);
+    ++ran;
+    fn();
+    if (::testing::Test::HasFatalFailure()) break;
+  }
+  set_isa(was);
+  EXPECT_GE(ran, 1);
+}
+
 /// Points to evaluate in packets: random points around the mesh, and the samples of a fine
 /// lattice next to the surface, in 4x2x2 groups (as grid tiles give them), some on vertices.
 template <class T>
@@ -212,17 +232,20 @@ template <class T> std::vector<std::pair<const char*, PolygonSoup<T>>> packet_me
 TYPED_TEST(WindingTest, PacketsAreThePerPointValuesBitForBit) {
   using T = TypeParam;
   const auto meshes = packet_meshes<T>();
-  for (const auto& [name, soup] : meshes) {
-    SCOPED_TRACE(name);
-    const TriangleMesh<T> m = make_triangle_mesh(soup).value();
-    expect_packets_equal_points<T, 4>(m, 8);
-    expect_packets_equal_points<T, 8>(m, 8);
-    expect_packets_equal_points<T, 2>(m, 1);
-    expect_packets_equal_points<T, 4>(m, 3);
-  }
-  // A single-leaf tree (the root is a leaf) and an empty packet.
   const TriangleMesh<T> tet = make_triangle_mesh(make_tetrahedron<T>().value()).value();
-  expect_packets_equal_points<T, 4>(tet, 8);
+  for_each_isa([&] {
+    for (const auto& [name, soup] : meshes) {
+      SCOPED_TRACE(name);
+      const TriangleMesh<T> m = make_triangle_mesh(soup).value();
+      expect_packets_equal_points<T, 4>(m, 8);
+      expect_packets_equal_points<T, 8>(m, 8);
+      expect_packets_equal_points<T, 2>(m, 1);
+      expect_packets_equal_points<T, 4>(m, 3);
+    }
+    // A single-leaf tree (the root is a leaf).
+    expect_packets_equal_points<T, 4>(tet, 8);
+  });
+  // An empty packet.
   const auto fw = FastWindingNumber<T>::make(tet).value();
   T untouched = T(7);
   fw.eval_packet(nullptr, 0, &untouched);
@@ -348,20 +371,23 @@ void expect_bounds_hold(const TriangleMesh<T>& m, int leaf, int& undecided) {
 TYPED_TEST(WindingTest, SignBoundsHoldAndDecideAsThePerPointValues) {
   using T = TypeParam;
   const auto meshes = packet_meshes<T>();
-  int undecided = 0;
-  for (const auto& [name, soup] : meshes) {
-    SCOPED_TRACE(name);
-    const TriangleMesh<T> m = make_triangle_mesh(soup).value();
-    expect_bounds_hold<T, 4>(m, 8, undecided);
-    expect_bounds_hold<T, 8>(m, 8, undecided);
-    expect_bounds_hold<T, 2>(m, 1, undecided);
-    expect_bounds_hold<T, 4>(m, 3, undecided);
-  }
-  // The points next to w = 1/2 reach the exact fallback (the test is adversarial).
-  EXPECT_GT(undecided, 10);
-  // A single-leaf tree (the root is a leaf), and empty packets.
   const TriangleMesh<T> tet = make_triangle_mesh(make_tetrahedron<T>().value()).value();
-  expect_bounds_hold<T, 4>(tet, 8, undecided);
+  for_each_isa([&] {
+    int undecided = 0;
+    for (const auto& [name, soup] : meshes) {
+      SCOPED_TRACE(name);
+      const TriangleMesh<T> m = make_triangle_mesh(soup).value();
+      expect_bounds_hold<T, 4>(m, 8, undecided);
+      expect_bounds_hold<T, 8>(m, 8, undecided);
+      expect_bounds_hold<T, 2>(m, 1, undecided);
+      expect_bounds_hold<T, 4>(m, 3, undecided);
+    }
+    // The points next to w = 1/2 reach the exact fallback (the test is adversarial).
+    EXPECT_GT(undecided, 10);
+    // A single-leaf tree (the root is a leaf).
+    expect_bounds_hold<T, 4>(tet, 8, undecided);
+  });
+  // Empty packets.
   const auto fw = FastWindingNumber<T>::make(tet).value();
   T untouched = T(7);
   bool flag = true;
