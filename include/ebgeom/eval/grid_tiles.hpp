@@ -182,9 +182,42 @@ void prove_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
   }
 }
 
+/// With a batch sign (`has_batch_sign_v`): `sg[l] = sign_at(sample l)` for the samples of the tile
+/// at `base` (local indices, stride 8; `size` samples per axis) whose sign is `unknown` and that
+/// `want(l)` selects, in one `signs_at` call over groups of 4x2x2 neighbours (packets of nearby
+/// samples). Without one, nothing.
+template <class S, class Want>
+void batch_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
+                 const std::array<std::size_t, 3>& base, const std::array<std::size_t, 3>& size,
+                 Sign* sg, Want&& want) {
+  if constexpr (has_batch_sign_v<S>) {
+    using T = sdf_scalar_t<S>;
+    constexpr std::size_t W = grid_tile;
+    Vec3<T> pts[W * W * W];
+    Sign got[W * W * W];
+    std::uint16_t idx[W * W * W];
+    std::size_t m = 0;
+    for (std::size_t gz = 0; gz < size[2]; gz += 2)
+      for (std::size_t gy = 0; gy < size[1]; gy += 2)
+        for (std::size_t gx = 0; gx < size[0]; gx += 4)
+          for (std::size_t z = gz; z < std::min(size[2], gz + 2); ++z)
+            for (std::size_t y = gy; y < std::min(size[1], gy + 2); ++y)
+              for (std::size_t x = gx; x < std::min(size[0], gx + 4); ++x) {
+                const std::size_t l = x + W * (y + W * z);
+                if (sg[l] != Sign::unknown || !want(l)) continue;
+                idx[m] = static_cast<std::uint16_t>(l);
+                pts[m++] = f.point(base[0] + x, base[1] + y, base[2] + z);
+              }
+    sdf.signs_at(Span<const Vec3<T>>(pts, m), Span<Sign>(got, m));
+    for (std::size_t i = 0; i < m; ++i) sg[idx[i]] = got[i];
+  }
+}
+
 /// The sign every sample of the tile `tile` gets from `sign_at` when it is one sign, else
 /// `unknown`; `far` is a lower bound on the samples' distances. Proofs first (`prove_signs`),
-/// then `sign_at` per remaining sample, stopping at the first disagreement.
+/// then `sign_at` per remaining sample, stopping at the first disagreement. With a batch sign,
+/// proofs only over boxes of at least 9 samples and the samples left in one batch (as
+/// `eval_split_tile`: the packets cost less than the proofs over boxes of 2x2x2 samples).
 template <class S>
 Sign tile_sign(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
                const std::array<std::size_t, 3>& tile, sdf_scalar_t<S> far) {
@@ -196,7 +229,9 @@ Sign tile_sign(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
   std::fill(sg, sg + W * W * W, Sign::unknown);
   prove_signs(
       sdf, f, base, {{0, 0, 0}}, size, sg,
-      [&](const std::array<std::size_t, 3>&, const std::array<std::size_t, 3>&) { return far; });
+      [&](const std::array<std::size_t, 3>&, const std::array<std::size_t, 3>&) { return far; },
+      has_batch_sign_v<S> ? std::size_t(9) : std::size_t(2));
+  batch_signs(sdf, f, base, size, sg, [](std::size_t) { return true; });
   Sign first = Sign::unknown;
   for (std::size_t z = 0; z < size[2]; ++z)
     for (std::size_t y = 0; y < size[1]; ++y)
@@ -255,26 +290,8 @@ void eval_split_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
         return m;
       },
       has_batch_sign_v<S> ? std::size_t(9) : std::size_t(2));
-  if constexpr (has_batch_sign_v<S>) {
-    // The samples left, in groups of 4x2x2 neighbours: one batch (packets of nearby samples).
-    Vec3<T> pts[W * W * W];
-    Sign got[W * W * W];
-    std::uint16_t idx[W * W * W];
-    std::size_t m = 0;
-    for (std::size_t gz = 0; gz < size[2]; gz += 2)
-      for (std::size_t gy = 0; gy < size[1]; gy += 2)
-        for (std::size_t gx = 0; gx < size[0]; gx += 4)
-          for (std::size_t z = gz; z < std::min(size[2], gz + 2); ++z)
-            for (std::size_t y = gy; y < std::min(size[1], gy + 2); ++y)
-              for (std::size_t x = gx; x < std::min(size[0], gx + 4); ++x) {
-                const std::size_t l = x + W * (y + W * z);
-                if (!(vals[l] > T(0)) || sg[l] != Sign::unknown) continue;
-                idx[m] = static_cast<std::uint16_t>(l);
-                pts[m++] = f.point(base[0] + x, base[1] + y, base[2] + z);
-              }
-    sdf.signs_at(Span<const Vec3<T>>(pts, m), Span<Sign>(got, m));
-    for (std::size_t i = 0; i < m; ++i) sg[idx[i]] = got[i];
-  }
+  // The samples left (off the surface): one batch, where the SDF has one.
+  batch_signs(sdf, f, base, size, sg, [&](std::size_t l) { return vals[l] > T(0); });
   for (std::size_t z = 0; z < size[2]; ++z)
     for (std::size_t y = 0; y < size[1]; ++y)
       for (std::size_t x = 0; x < size[0]; ++x) {
