@@ -4,10 +4,11 @@
 /// \file
 /// SIMD helpers shared by the vector kernels: per-lane bit masks of a W-wide block (`LaneMask`,
 /// `detail::lane_mask`), the minimum over a block's lanes (`lane_min`), the lowest set bit and a
-/// prefetch hint. On instruction sets with AVX / AVX-512 (the template argument `I`, see
-/// `core/isa.hpp`) the masks come from vector compares; the plain loops are the reference and the
-/// fallback, with the same results.
+/// prefetch hint, and square roots of a block's lanes (`lane_sqrt`). On instruction sets with AVX /
+/// AVX-512 (the template argument `I`, see `core/isa.hpp`) the masks come from vector compares; the
+/// plain loops are the reference and the fallback, with the same results.
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -81,6 +82,67 @@ EBGEOM_TARGET_AVX512 EBGEOM_VECTOR_KERNEL inline std::uint32_t register_mask_avx
     return _mm512_cmp_ps_mask(_mm512_loadu_ps(v), _mm512_set1_ps(b), pred);
 }
 #endif
+
+#if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
+/// Square roots of the 32 / sizeof(T) values at `v` into `out` (see `lane_sqrt`).
+template <class T>
+EBGEOM_TARGET_AVX2 EBGEOM_VECTOR_KERNEL inline void register_sqrt_avx(const T* v, T* out) noexcept {
+  if constexpr (sizeof(T) == 8)
+    _mm256_storeu_pd(out, _mm256_sqrt_pd(_mm256_loadu_pd(v)));
+  else
+    _mm256_storeu_ps(out, _mm256_sqrt_ps(_mm256_loadu_ps(v)));
+}
+#endif
+
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+/// Square roots of the 64 / sizeof(T) values at `v` into `out` (see `lane_sqrt`). The zero-masked
+/// form with every lane set: GCC 12 warns of an uninitialised value in the plain one's header.
+template <class T>
+EBGEOM_TARGET_AVX512 EBGEOM_VECTOR_KERNEL inline void register_sqrt_avx512(const T* v,
+                                                                           T* out) noexcept {
+  if constexpr (sizeof(T) == 8)
+    _mm512_storeu_pd(out, _mm512_maskz_sqrt_pd(0xff, _mm512_loadu_pd(v)));
+  else
+    _mm512_storeu_ps(out, _mm512_maskz_sqrt_ps(0xffff, _mm512_loadu_ps(v)));
+}
+#endif
+
+/// `out[l] = sqrt(v[l])` for the W lanes, in vector registers on instruction set I. The square
+/// root is correctly rounded, so the values are `std::sqrt`'s; but GCC 12 neither inlines
+/// `std::sqrt` into a kernel of other options nor vectorises `__builtin_sqrt` while `errno` may
+/// be set (the `optimize("no-math-errno")` attribute does not lift it): a loop of `std::sqrt`
+/// there is a library call per lane. SSE2 registers where the kernel has neither AVX2 nor
+/// AVX-512; the plain loop is the fallback elsewhere.
+template <Isa I = native_isa, class T, int W>
+EBGEOM_FORCE_INLINE void lane_sqrt(const T (&v)[W], T (&out)[W]) noexcept {
+  constexpr int bytes = lane_mask_register_bytes<T, W, I>();
+#if defined(__SSE2__)
+  if constexpr (bytes == 0 &&
+                (std::is_same_v<T, float> || std::is_same_v<T, double>)&&W * sizeof(T) % 16 == 0) {
+    constexpr int n = 16 / int(sizeof(T));
+    for (int r = 0; r < W / n; ++r) {
+      if constexpr (sizeof(T) == 8)
+        _mm_storeu_pd(out + r * n, _mm_sqrt_pd(_mm_loadu_pd(v + r * n)));
+      else
+        _mm_storeu_ps(out + r * n, _mm_sqrt_ps(_mm_loadu_ps(v + r * n)));
+    }
+    return;
+  }
+#endif
+  if constexpr (bytes > 0) {
+    constexpr int n = bytes / int(sizeof(T)); // lanes per register
+    for (int r = 0; r < W / n; ++r) {
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+      if constexpr (bytes == 64) register_sqrt_avx512(v + r * n, out + r * n);
+#endif
+#if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
+      if constexpr (bytes == 32) register_sqrt_avx(v + r * n, out + r * n);
+#endif
+    }
+    return;
+  }
+  for (int l = 0; l < W; ++l) out[l] = std::sqrt(v[l]);
+}
 
 /// Bit l set where `v[l] <= b` (`LaneCmp::le`) or `v[l] == b` (`eq`); false for NaN lanes, as the
 /// C++ comparisons. GCC 12 builds such a mask from vector compares with shifts, ors and shuffles

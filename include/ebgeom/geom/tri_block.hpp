@@ -128,11 +128,12 @@ namespace detail {
 /// bound on the distance from any point x to it (distance to a convex set is convex). Lanes with
 /// `p` on the triangle get n = 0 and off = -inf... no bound (`n · x - off = -inf`). Approximate
 /// (callers add margins); same case analysis as `block_distance2`.
-template <class T, int W>
+template <class T, int W, Isa I>
 EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE void
 block_planes_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T (&onx)[W], T (&ony)[W],
                     T (&onz)[W], T (&ooff)[W]) noexcept {
-  T rx[W], ry[W], rz[W], ro[W];
+  // Two passes around the square roots (`lane_sqrt`: a library call per lane in a plain loop).
+  T qxs[W], qys[W], qzs[W], gxs[W], gys[W], gzs[W], g2s[W];
   for (int l = 0; l < W; ++l) {
     const T ax = t.ax[l], ay = t.ay[l], az = t.az[l];
     const T bx = t.bx[l], by = t.by[l], bz = t.bz[l];
@@ -177,10 +178,18 @@ block_planes_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T (&onx)[W], T (&
     qx = inside ? p.x - nx * hn : qx, qy = inside ? p.y - ny * hn : qy;
     qz = inside ? p.z - nz * hn : qz;
     const T gx = p.x - qx, gy = p.y - qy, gz = p.z - qz;
-    const T g2 = gx * gx + gy * gy + gz * gz;
-    const T inv = g2 > T(0) ? T(1) / std::sqrt(g2) : T(0);
-    rx[l] = gx * inv, ry[l] = gy * inv, rz[l] = gz * inv;
-    ro[l] = g2 > T(0) ? rx[l] * qx + ry[l] * qy + rz[l] * qz : std::numeric_limits<T>::infinity();
+    qxs[l] = qx, qys[l] = qy, qzs[l] = qz, gxs[l] = gx, gys[l] = gy, gzs[l] = gz;
+    g2s[l] = gx * gx + gy * gy + gz * gz;
+  }
+  T g[W];
+  lane_sqrt<I>(g2s, g);
+  T rx[W], ry[W], rz[W], ro[W];
+  for (int l = 0; l < W; ++l) {
+    const T g2 = g2s[l];
+    const T inv = g2 > T(0) ? T(1) / g[l] : T(0);
+    rx[l] = gxs[l] * inv, ry[l] = gys[l] * inv, rz[l] = gzs[l] * inv;
+    ro[l] = g2 > T(0) ? rx[l] * qxs[l] + ry[l] * qys[l] + rz[l] * qzs[l]
+                      : std::numeric_limits<T>::infinity();
   }
   for (int l = 0; l < W; ++l) onx[l] = rx[l], ony[l] = ry[l], onz[l] = rz[l], ooff[l] = ro[l];
 }
@@ -253,7 +262,7 @@ block_min_pruned_inline(const TriBlock<T, W>& t, const Vec3<T>& p, T b2, T lim) 
   TARGET EBGEOM_VECTOR_KERNEL EBGEOM_NOINLINE static void block_planes(                            \
       const TriBlock<T, W>& t, const Vec3<T>& p, T(&nx)[W], T(&ny)[W], T(&nz)[W],                  \
       T(&off)[W]) noexcept {                                                                       \
-    block_planes_inline(t, p, nx, ny, nz, off);                                                    \
+    block_planes_inline<T, W, I>(t, p, nx, ny, nz, off);                                           \
   }
 
 /// The translation unit's own flags (`Isa::baseline`, or `native_isa` without dispatch).

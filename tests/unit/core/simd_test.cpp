@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SPDX-FileCopyrightText: 2026 The ebgeom authors
-// The lane masks and lane minimum of core/simd.hpp against scalar comparisons and scans.
+// The lane masks, lane minimum and lane square roots of core/simd.hpp against scalar comparisons,
+// scans and std::sqrt.
 #include "ebgeom/core/simd.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -57,6 +59,50 @@ template <class T, int W> void lane_mask_matches_the_comparisons(std::mt19937_64
   }
 }
 } // namespace
+
+namespace {
+/// `lane_sqrt` on instruction set I (vector square roots where it has them) against `std::sqrt`,
+/// bit for bit: zeros of both signs, infinity, NaN, subnormals and random magnitudes.
+template <class T, int W, Isa I> void lane_sqrt_matches_std_sqrt(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> mant(1, 2);
+  std::uniform_int_distribution<int> expo(-60, 60);
+  const T special[6] = {T(0),
+                        T(-0.0),
+                        std::numeric_limits<T>::infinity(),
+                        std::numeric_limits<T>::quiet_NaN(),
+                        std::numeric_limits<T>::denorm_min(),
+                        std::numeric_limits<T>::min()};
+  for (int round = 0; round < 200; ++round) {
+    T v[W], got[W];
+    for (int l = 0; l < W; ++l) v[l] = T(std::ldexp(mant(rng), expo(rng)));
+    v[round % W] = special[round % 6];
+    detail::lane_sqrt<I>(v, got);
+    for (int l = 0; l < W; ++l) {
+      const T want = std::sqrt(v[l]);
+      ASSERT_TRUE(std::isnan(want) ? std::isnan(got[l])
+                                   : std::memcmp(&got[l], &want, sizeof(T)) == 0)
+          << "W " << W << " isa " << int(I) << " v " << v[l];
+    }
+  }
+}
+
+template <class T, Isa I> void lane_sqrt_matches_on(std::mt19937_64& rng) {
+  lane_sqrt_matches_std_sqrt<T, 1, I>(rng);
+  lane_sqrt_matches_std_sqrt<T, 4, I>(rng);
+  lane_sqrt_matches_std_sqrt<T, 8, I>(rng);
+  lane_sqrt_matches_std_sqrt<T, 16, I>(rng);
+  lane_sqrt_matches_std_sqrt<T, 24, I>(rng); // several registers, not a power of two
+  lane_sqrt_matches_std_sqrt<T, 5, I>(rng);  // no whole register: the plain loop
+}
+} // namespace
+
+TYPED_TEST(SimdTest, LaneSqrtEqualsStdSqrtOnEveryInstructionSet) {
+  std::mt19937_64 rng(12);
+  lane_sqrt_matches_on<TypeParam, Isa::baseline>(rng);
+  lane_sqrt_matches_on<TypeParam, native_isa>(rng);
+  if (int(detected_isa()) >= int(Isa::avx2)) lane_sqrt_matches_on<TypeParam, Isa::avx2>(rng);
+  if (int(detected_isa()) >= int(Isa::avx512)) lane_sqrt_matches_on<TypeParam, Isa::avx512>(rng);
+}
 
 TYPED_TEST(SimdTest, LaneMaskEqualsTheScalarComparisons) {
   std::mt19937_64 rng(10);
