@@ -15,11 +15,14 @@
 
 #include "ebgeom/bvh/wide_bvh.hpp"
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
 #include "ebgeom/core/isa.hpp"
 
 #if defined(__SSE2__) || defined(__AVX__) || EBGEOM_ISA_DISPATCH
 #include <immintrin.h>
 #endif
+
+EBGEOM_BEGIN_EXACT_FP
 
 namespace ebgeom::bvh::detail {
 /// True for the node types with an AVX form of the child distances.
@@ -170,3 +173,5 @@ EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<double, 4>& n, const Vec
 #endif
 
 } // namespace ebgeom::bvh
+
+EBGEOM_END_EXACT_FP

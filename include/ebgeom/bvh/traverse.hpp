@@ -33,6 +33,8 @@
 #include "ebgeom/core/isa.hpp"
 #include "ebgeom/core/vec.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom::bvh {
 
 /// A subtree waiting to be visited, with the squared distance of its box.
@@ -357,3 +359,5 @@ k_nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, std::size_t k, Dist2Fn
 }
 
 } // namespace ebgeom::bvh
+
+EBGEOM_END_EXACT_FP

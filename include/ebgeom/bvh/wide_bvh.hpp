@@ -19,6 +19,8 @@
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/core/vec.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom::bvh {
 
 /// Reference to a child of a wide node: an inner node, a leaf (a range of primitive slots in leaf
@@ -335,3 +337,5 @@ void refit(WideBvh<T, K, BV>& bvh, const LeafBv& leaf_bv) {
 }
 
 } // namespace ebgeom::bvh
+
+EBGEOM_END_EXACT_FP

@@ -6,7 +6,10 @@
 
 #include <limits>
 
+#include "ebgeom/core/config.hpp"
 #include "ebgeom/core/vec.hpp"
+
+EBGEOM_BEGIN_EXACT_FP
 
 namespace ebgeom {
 
@@ -115,3 +118,5 @@ template <class T> struct Aabb {
 };
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

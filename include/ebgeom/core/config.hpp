@@ -45,14 +45,29 @@
 /// Both this and `EBGEOM_EXACT_KERNEL` (on the scalar twin of such a kernel) also turn off
 /// floating-point contraction: with FMA enabled (-march=haswell and later) GCC fuses a*b + c
 /// differently in a vectorised loop and in scalar code, and the block kernel would then differ
-/// from the scalar kernel (and the BVH from the brute force) in the last bit. Clang contracts
-/// only within one expression, the same way in both, so it needs neither.
+/// from the scalar kernel (and the BVH from the brute force) in the last bit. Clang has no such
+/// function attribute: see `EBGEOM_BEGIN_EXACT_FP`.
 #if defined(__GNUC__) && !defined(__clang__)
 #define EBGEOM_VECTOR_KERNEL __attribute__((optimize("no-trapping-math", "fp-contract=off")))
 #define EBGEOM_EXACT_KERNEL __attribute__((optimize("fp-contract=off")))
 #else
 #define EBGEOM_VECTOR_KERNEL
 #define EBGEOM_EXACT_KERNEL
+#endif
+
+/// Around the code of the headers whose arithmetic runs inside the run-time dispatched kernels
+/// (`core/isa.hpp`) and must give the same bits there as in the caller's own build: with Clang,
+/// no contraction into fused multiply-adds. Clang contracts within an expression by default, so a
+/// function inlined into an AVX2 kernel (FMA) would round differently from the same function in
+/// a build without FMA, and the dispatched search would differ from the brute force in the last
+/// bit. The pragmas are scoped (pushed and popped), so code after the header is not affected.
+/// GCC: the kernels' own attributes above.
+#if defined(__clang__)
+#define EBGEOM_BEGIN_EXACT_FP _Pragma("float_control(push)") _Pragma("clang fp contract(off)")
+#define EBGEOM_END_EXACT_FP _Pragma("float_control(pop)")
+#else
+#define EBGEOM_BEGIN_EXACT_FP
+#define EBGEOM_END_EXACT_FP
 #endif
 
 /// A documented precondition on a value the caller controls that has no error channel (an enum

@@ -20,6 +20,8 @@
 #include <immintrin.h>
 #endif
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom {
 
 namespace detail {
@@ -222,3 +224,5 @@ EBGEOM_FORCE_INLINE void prefetch(const void* p) noexcept {
 } // namespace detail
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

@@ -13,6 +13,8 @@
 
 #include "ebgeom/core/config.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom {
 
 /// Two-component vector. Plain aggregate: `Vec2<double> v{1, 2};`.
@@ -190,3 +192,5 @@ template <class T> std::ostream& operator<<(std::ostream& os, const Vec2<T>& v) 
 }
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

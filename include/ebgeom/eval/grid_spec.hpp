@@ -24,6 +24,8 @@
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/vec.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom {
 
 /// Where the samples of a grid lie in its box.
@@ -196,3 +198,5 @@ inline std::uint64_t morton3(std::uint32_t x, std::uint32_t y, std::uint32_t z) 
 inline constexpr std::size_t grid_tile = 8;
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
 #include "ebgeom/core/span.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/eval/evaluate.hpp"
@@ -47,6 +48,8 @@
 #include "ebgeom/octree/octree.hpp"
 #include "ebgeom/sdf/concepts.hpp"
 #include "ebgeom/sdf/split_sign.hpp"
+
+EBGEOM_BEGIN_EXACT_FP
 
 namespace ebgeom::detail {
 
@@ -599,3 +602,5 @@ Result<Ok> check_grid_args(const GridSpec<T>& spec, const GridRange& region, con
 }
 
 } // namespace ebgeom::detail
+
+EBGEOM_END_EXACT_FP

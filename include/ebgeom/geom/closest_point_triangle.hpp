@@ -11,6 +11,8 @@
 #include "ebgeom/core/config.hpp"
 #include "ebgeom/core/vec.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom {
 
 /// The feature of a triangle (v0, v1, v2) on which a closest point lies. Edge k joins vertex k and
@@ -172,3 +174,5 @@ signed_distance_triangle(const Vec3<T>& p, const Vec3<T>& a, const Vec3<T>& b, c
 }
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

@@ -8,7 +8,10 @@
 
 #include <cmath>
 
+#include "ebgeom/core/config.hpp"
 #include "ebgeom/core/vec.hpp"
+
+EBGEOM_BEGIN_EXACT_FP
 
 namespace ebgeom {
 
@@ -89,3 +92,5 @@ template <class T> inline T dipole_winding(const DipoleCluster<T>& c, const Vec3
 }
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

@@ -20,6 +20,8 @@
 #include "ebgeom/core/simd.hpp"
 #include "ebgeom/core/vec.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom {
 /// W triangles, structure of arrays: 9·W scalars (W = 8 float: 288 B; W = 4 double: 288 B).
 template <class T, int W> struct TriBlock {
@@ -310,3 +312,5 @@ inline void block_planes(const TriBlock<T, W>& t, const Vec3<T>& p, T (&onx)[W],
 }
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "ebgeom/core/aabb.hpp"
+#include "ebgeom/core/config.hpp"
 #include "ebgeom/core/result.hpp"
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/geom/closest_point_triangle.hpp"
@@ -18,6 +19,8 @@
 #include "ebgeom/mesh/triangle_mesh.hpp"
 #include "ebgeom/sdf/concepts.hpp"
 #include "ebgeom/sdf/mesh_closest_point.hpp"
+
+EBGEOM_BEGIN_EXACT_FP
 
 namespace ebgeom {
 
@@ -74,3 +77,5 @@ template <class T> class BruteForceMeshSdf {
 };
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

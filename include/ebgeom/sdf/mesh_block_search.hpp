@@ -19,6 +19,8 @@
 #include "ebgeom/core/vec.hpp"
 #include "ebgeom/geom/tri_block.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom::detail {
 
 /// A view of a blocked BVH: the tree, its blocks, the triangle id of each block lane (a slot) and
@@ -103,3 +105,5 @@ template <> struct MeshSearchKernels<Isa::avx512> {
 #undef EBGEOM_MESH_SEARCH_KERNELS
 
 } // namespace ebgeom::detail
+
+EBGEOM_END_EXACT_FP

@@ -16,6 +16,8 @@
 #include "ebgeom/geom/closest_point_triangle.hpp"
 #include "ebgeom/mesh/triangle_mesh.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom {
 
 /// Closest point of a mesh to a query: signed distance (< 0 inside), the point, the triangle
@@ -55,3 +57,5 @@ triangle_signed_distance(const TriangleMesh<T>& mesh, std::size_t t, const Vec3<
 }
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

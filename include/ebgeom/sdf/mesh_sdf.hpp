@@ -40,6 +40,8 @@
 #include "ebgeom/sdf/mesh_closest_point.hpp"
 #include "ebgeom/sdf/mesh_tile_eval.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom {
 
 /// Exact signed distance to a triangle mesh through a BVH (see the file comment).
@@ -412,3 +414,5 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
 };
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

@@ -27,6 +27,8 @@
 #include "ebgeom/geom/tri_block.hpp"
 #include "ebgeom/sdf/mesh_block_search.hpp"
 
+EBGEOM_BEGIN_EXACT_FP
+
 namespace ebgeom {
 
 /// Squared distances from `p` to `n` boxes stored as structure of arrays (`lo_x[i]`, ...).
@@ -495,3 +497,5 @@ template <> struct MeshTileKernels<Isa::avx512> {
 
 } // namespace detail
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP

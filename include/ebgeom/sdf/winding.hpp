@@ -57,14 +57,7 @@
 #define EBGEOM_WINDING_KERNEL
 #endif
 
-/// First statement of the winding kernels' bodies: with Clang, no contraction into fused
-/// multiply-adds either (Clang contracts within an expression by default, and the packets run
-/// with FMA on AVX2 and AVX-512 while the per-point evaluation may not have it).
-#if defined(__clang__)
-#define EBGEOM_WINDING_NO_CONTRACT _Pragma("clang fp contract(off)")
-#else
-#define EBGEOM_WINDING_NO_CONTRACT
-#endif
+EBGEOM_BEGIN_EXACT_FP
 
 namespace ebgeom {
 
@@ -379,7 +372,6 @@ inline constexpr double atan2_bounded_error = 3e-7;
 /// 2.4e-7 + 5e-15 < 3e-7. tests/unit/sign/winding_test.cpp checks it at 2²⁰ points, signed zeros,
 /// denormals and huge ratios.
 EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE double atan2_bounded(double y, double x) noexcept {
-  EBGEOM_WINDING_NO_CONTRACT
 #if defined(__GNUC__) || defined(__clang__)
   // The builtins: GCC does not inline std::abs and std::copysign into these kernels (their
   // optimisation attributes differ), which would keep the loops from vectorising.
@@ -494,7 +486,6 @@ template <class T, int K = 4> class FastWindingNumber {
   /// O(beta⁻³) per far cluster otherwise (beta = 2: mean |error| about 0.004, largest about 0.06
   /// on the test meshes; see docs/sign.md). Finite for finite p with coordinates below ~1e100.
   EBGEOM_WINDING_KERNEL T operator()(const Vec3<T>& p) const noexcept {
-    EBGEOM_WINDING_NO_CONTRACT
     const bvh::ChildRef root = bvh_.root;
     if (root.is_leaf()) return T(leaf_sum(root.index, root.count, p) * inv4pi);
     if (!root.is_inner()) return T(0);
@@ -552,7 +543,6 @@ template <class T, int K = 4> class FastWindingNumber {
   /// both without contraction into fused multiply-adds). Fast for nearby points (a few 4x2x2
   /// groups of grid samples), which open nearly the same nodes. Thread-safe.
   EBGEOM_WINDING_KERNEL void eval_packet(const Vec3<T>* pts, int n, T* out) const noexcept {
-    EBGEOM_WINDING_NO_CONTRACT
     constexpr int P = packet_width;
     if (n <= 0) return;
     EBGEOM_ASSERT(n <= P);
@@ -577,7 +567,6 @@ template <class T, int K = 4> class FastWindingNumber {
   /// with `detail::atan2_bounded` over all the lanes at once instead of `std::atan2` per lane;
   /// see `sign_bound` for the margin. Thread-safe.
   EBGEOM_WINDING_KERNEL void bound_packet(const Vec3<T>* pts, int n, T* lo, T* hi) const noexcept {
-    EBGEOM_WINDING_NO_CONTRACT
     constexpr int P = packet_width;
     if (n <= 0) return;
     EBGEOM_ASSERT(n <= P);
@@ -652,7 +641,6 @@ template <class T, int K = 4> class FastWindingNumber {
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void packet_sums_inline(const Vec3<T>* pts, int n,
                                                                     T* far_sum, double* near,
                                                                     double* cnt) const noexcept {
-    EBGEOM_WINDING_NO_CONTRACT
     constexpr int P = packet_width;
     constexpr T inv4pi_t = T(0.07957747154594767);
     alignas(64) T px[P], py[P], pz[P], f[P];
@@ -781,7 +769,6 @@ template <class T, int K = 4> class FastWindingNumber {
   solid_angle_terms(double px, double py, double pz, double ax, double ay, double az, double bx,
                     double by, double bz, double cx, double cy, double cz, double la, double lb,
                     double lc, double& num, double& den) noexcept {
-    EBGEOM_WINDING_NO_CONTRACT
     const double rax = ax - px, ray = ay - py, raz = az - pz;
     const double rbx = bx - px, rby = by - py, rbz = bz - pz;
     const double rcx = cx - px, rcy = cy - py, rcz = cz - pz;
@@ -794,7 +781,6 @@ template <class T, int K = 4> class FastWindingNumber {
   /// |a - p|², as `solid_angle` computes it before its square root.
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE static double
   dist2(double px, double py, double pz, double ax, double ay, double az) noexcept {
-    EBGEOM_WINDING_NO_CONTRACT
     const double rx = ax - px, ry = ay - py, rz = az - pz;
     return rx * rx + ry * ry + rz * rz;
   }
@@ -803,7 +789,6 @@ template <class T, int K = 4> class FastWindingNumber {
   /// float coordinates, and one rounding less).
   EBGEOM_WINDING_KERNEL double leaf_sum(std::uint32_t first, std::uint32_t count,
                                         const Vec3<T>& p) const noexcept {
-    EBGEOM_WINDING_NO_CONTRACT
     const T* t = tri_.data();
     const std::size_t n = n_;
     const double px = double(p.x), py = double(p.y), pz = double(p.z);
@@ -829,7 +814,6 @@ template <class T, int K = 4> class FastWindingNumber {
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
   leaf_lanes(std::uint32_t first, std::uint32_t count, const double* px, const double* py,
              const double* pz, std::uint32_t open, double* s) const noexcept {
-    EBGEOM_WINDING_NO_CONTRACT
     const T* t = tri_.data();
     const std::size_t n = n_;
     alignas(64) double num[N], den[N], la[N], lb[N], lc[N];
@@ -871,7 +855,6 @@ template <class T, int K = 4> class FastWindingNumber {
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
   leaf_sum_packet(std::uint32_t first, std::uint32_t count, const double* px, const double* py,
                   const double* pz, std::uint32_t open, double* near, double* cnt) const noexcept {
-    EBGEOM_WINDING_NO_CONTRACT
     constexpr int P = packet_width;
     alignas(64) double s[P];
     int idx[P], m = 0;
@@ -1100,3 +1083,5 @@ template <class T, int K = 4> class FastWindingNumber {
 };
 
 } // namespace ebgeom
+
+EBGEOM_END_EXACT_FP
