@@ -200,17 +200,12 @@ void batch_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
     Sign got[W * W * W];
     std::uint16_t idx[W * W * W];
     std::size_t m = 0;
-    for (std::size_t gz = 0; gz < size[2]; gz += 2)
-      for (std::size_t gy = 0; gy < size[1]; gy += 2)
-        for (std::size_t gx = 0; gx < size[0]; gx += 4)
-          for (std::size_t z = gz; z < std::min(size[2], gz + 2); ++z)
-            for (std::size_t y = gy; y < std::min(size[1], gy + 2); ++y)
-              for (std::size_t x = gx; x < std::min(size[0], gx + 4); ++x) {
-                const std::size_t l = x + W * (y + W * z);
-                if (sg[l] != Sign::unknown || !want(l)) continue;
-                idx[m] = static_cast<std::uint16_t>(l);
-                pts[m++] = f.point(base[0] + x, base[1] + y, base[2] + z);
-              }
+    for_each_in_sign_groups(size, [&](std::size_t x, std::size_t y, std::size_t z) {
+      const std::size_t l = x + W * (y + W * z);
+      if (sg[l] != Sign::unknown || !want(l)) return;
+      idx[m] = static_cast<std::uint16_t>(l);
+      pts[m++] = f.point(base[0] + x, base[1] + y, base[2] + z);
+    });
     sdf.signs_at(Span<const Vec3<T>>(pts, m), Span<Sign>(got, m));
     for (std::size_t i = 0; i < m; ++i) sg[idx[i]] = got[i];
   }

@@ -293,16 +293,11 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
     // Samples off the surface, in groups of 4x2x2 neighbours (x fastest).
     std::vector<std::size_t> idx;
     idx.reserve(pts.size());
-    for (std::size_t gz = 0; gz < dims[2]; gz += 2)
-      for (std::size_t gy = 0; gy < dims[1]; gy += 2)
-        for (std::size_t gx = 0; gx < dims[0]; gx += 4)
-          for (std::size_t z = gz; z < std::min(dims[2], gz + 2); ++z)
-            for (std::size_t y = gy; y < std::min(dims[1], gy + 2); ++y)
-              for (std::size_t x = gx; x < std::min(dims[0], gx + 4); ++x) {
-                const std::size_t l = x + dims[0] * (y + dims[1] * z);
-                out[l] = std::abs(out[l]);
-                if (out[l] > T(0)) idx.push_back(l);
-              }
+    detail::for_each_in_sign_groups(dims, [&](std::size_t x, std::size_t y, std::size_t z) {
+      const std::size_t l = x + dims[0] * (y + dims[1] * z);
+      out[l] = std::abs(out[l]);
+      if (out[l] > T(0)) idx.push_back(l);
+    });
     std::vector<Vec3<T>> q(idx.size());
     std::vector<Sign> sg(idx.size());
     for (std::size_t i = 0; i < idx.size(); ++i) q[i] = pts[idx[i]];
