@@ -236,24 +236,23 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
     }
   }
 
-  /// Split-sign protocol, batch form: `out[i] = sign_at(pts[i])` for every i, the winding modes'
-  /// signs decided in packets over runs of consecutive points (order them so that neighbours
-  /// are near): `FastWindingNumber::above_half_packet`, which bounds the fast winding numbers
-  /// with a cheap vectorised pass and evaluates them exactly (bit for bit the per-point values)
-  /// only where the bounds do not decide.
+  /// Split-sign protocol, batch form: `out[i] = sign_at(pts[i])` for every i, the fast winding
+  /// signs decided over runs of consecutive points (order them so that neighbours are near):
+  /// `FastWindingNumber::above_half`, which bounds the fast winding numbers (the clusters far
+  /// from a run's whole box once for the run, the rest in vectorised packets) and evaluates them
+  /// exactly (bit for bit the per-point values) only where the bounds do not decide.
   void signs_at(Span<const Vec3<T>> pts, Span<Sign> out) const noexcept {
     EBGEOM_ASSERT(pts.size() == out.size());
     if (mode_ != SignMode::fast_winding) {
       for (std::size_t i = 0; i < pts.size(); ++i) out[i] = sign_at(pts[i]);
       return;
     }
-    constexpr int P = FastWindingNumber<T, K>::packet_width;
-    bool above[P];
-    for (std::size_t i = 0; i < pts.size(); i += std::size_t(P)) {
-      const int n = int(std::min(pts.size() - i, std::size_t(P)));
-      fast_.above_half_packet(pts.data() + i, n, above);
-      for (int j = 0; j < n; ++j)
-        out[i + std::size_t(j)] = above[j] ? Sign::negative : Sign::positive;
+    constexpr std::size_t B = FastWindingNumber<T, K>::batch_size;
+    bool above[B];
+    for (std::size_t i = 0; i < pts.size(); i += B) {
+      const std::size_t n = std::min(pts.size() - i, B);
+      fast_.above_half(pts.data() + i, n, above);
+      for (std::size_t j = 0; j < n; ++j) out[i + j] = above[j] ? Sign::negative : Sign::positive;
     }
   }
 

@@ -415,6 +415,12 @@ namespace detail {
   TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static void packet_sums(                            \
       const W& w, const Vec3<T>* pts, int n, T* far_sum, double* near, double* cnt) noexcept {     \
     w.template packet_sums_inline<Approx, I>(pts, n, far_sum, near, cnt);                          \
+  }                                                                                                \
+  template <class W, class F, class T>                                                             \
+  TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static void frontier_sums(                          \
+      const W& w, const F& fr, const Vec3<T>* pts, int n, T* far_sum, double* near, double* cnt,   \
+      T* mag, std::uint32_t& pops) noexcept {                                                      \
+    w.template frontier_sums_inline<I>(fr, pts, n, far_sum, near, cnt, mag, pops);                 \
   }
 
 template <Isa I> struct WindingKernels { EBGEOM_WINDING_KERNELS(I, ) };
@@ -617,6 +623,56 @@ template <class T, int K = 4> class FastWindingNumber {
     for (int i = 0; i < m; ++i) above[idx[i]] = w[i] > T(0.5);
   }
 
+  /// Points per chunk of `bound_batch` (one box each).
+  static constexpr std::size_t batch_size = 512;
+  /// `bound_batch` models the far field of a cluster for the whole box when the cluster is at
+  /// least this many times the box's radius away (closer ones are tested per point).
+  static constexpr double batch_kappa = 2;
+
+  /// Bounds on the winding numbers at `n` points (any n), as `bound_packet`: lo[i] <=
+  /// `(*this)(pts[i])` <= hi[i] where both are finite. For batches of nearby points (the samples
+  /// of a grid tile), cheaper than `bound_packet`: per chunk of `batch_size` points, the clusters
+  /// far from the chunk's whole box are evaluated once, at the box's centre, as a first-order
+  /// model with a bound on its second-order remainder over the box (`far_range`); each point
+  /// evaluates the rest (its own far tests, far fields and near leaves) in packets of
+  /// `packet_width`. The interval is wider than `bound_packet`'s by the model's remainder and the
+  /// far sums' rounding (about 1e-4 on a grid tile of the bunny). Thread-safe.
+  void bound_batch(const Vec3<T>* pts, std::size_t n, T* lo, T* hi) const noexcept {
+    for (std::size_t i = 0; i < n; i += batch_size)
+      bound_chunk(pts + i, std::min(n - i, batch_size), lo + i, hi + i);
+  }
+
+  /// above[i] = `(*this)(pts[i]) > 1/2` at `n` points (any n), exactly as the per-point values
+  /// decide: `bound_batch` where its interval lies on one side of 1/2, `above_half_packet` (its
+  /// narrower bound, then the exact values) for the others. Thread-safe, allocation-free.
+  void above_half(const Vec3<T>* pts, std::size_t n, bool* above) const noexcept {
+    constexpr int P = packet_width;
+    alignas(64) T lo[batch_size], hi[batch_size];
+    Vec3<T> rest[batch_size];
+    std::uint16_t idx[batch_size];
+    bool got[P];
+    for (std::size_t i = 0; i < n; i += batch_size) {
+      const std::size_t m = std::min(n - i, batch_size);
+      bound_chunk(pts + i, m, lo, hi);
+      std::size_t r = 0;
+      for (std::size_t j = 0; j < m; ++j) {
+        if (lo[j] > T(0.5)) {
+          above[i + j] = true;
+        } else if (hi[j] <= T(0.5)) {
+          above[i + j] = false;
+        } else {
+          idx[r] = std::uint16_t(j);
+          rest[r++] = pts[i + j];
+        }
+      }
+      for (std::size_t j = 0; j < r; j += std::size_t(P)) {
+        const int q = int(std::min(r - j, std::size_t(P)));
+        above_half_packet(rest + j, q, got);
+        for (int k = 0; k < q; ++k) above[i + idx[j + std::size_t(k)]] = got[k];
+      }
+    }
+  }
+
   /// The margin of `bound_packet` on a point's near sum `near` (Σ of `cnt` solid angles, each
   /// 2 `atan2_bounded`): the exact path sums 2 `std::atan2` of the same num and den (the same
   /// arithmetic, bit for bit) in the same order, so the two sums differ by at most cnt · 2 ·
@@ -642,8 +698,7 @@ template <class T, int K = 4> class FastWindingNumber {
                                                                     T* far_sum, double* near,
                                                                     double* cnt) const noexcept {
     constexpr int P = packet_width;
-    constexpr T inv4pi_t = T(0.07957747154594767);
-    alignas(64) T px[P], py[P], pz[P], f[P];
+    alignas(64) T px[P], py[P], pz[P];
     alignas(64) double dx[P], dy[P], dz[P];
     for (int j = 0; j < P; ++j) {
       const Vec3<T>& q = pts[j < n ? j : n - 1]; // spare lanes repeat the last point, masked
@@ -659,48 +714,83 @@ template <class T, int K = 4> class FastWindingNumber {
       return;
     }
     if (!root.is_inner()) return;
-    struct Item {
-      std::uint32_t node, mask; ///< node, and the points that open it (bit j: point j)
-    };
-    bvh::FixedStack<Item, bvh::WideBvh<T, K>::stack_capacity> todo;
+    Stack todo;
     todo.push({root.index, all});
+    std::uint32_t pops = 0;
+    drain<Approx, false, I>(todo, px, py, pz, dx, dy, dz, far_sum, near, cnt, nullptr, pops);
+  }
+
+  /// A node of a packet's traversal, and the points that open it (bit j: point j).
+  struct Item {
+    std::uint32_t node, mask;
+  };
+  using Stack = bvh::FixedStack<Item, bvh::WideBvh<T, K>::stack_capacity>;
+
+  /// The far-field test of child `k` of cluster node `c` at the packet's points (the arithmetic
+  /// of `operator()`), and f[j] += its far field at the points that take it as far; returns
+  /// those points' bits. With `Mag`, also mag[j] += `magk` at those points. Skips the far fields
+  /// when no point of `mask` takes the child as far.
+  template <bool Mag, Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE std::uint32_t
+  child_far_lanes(const WindingNode<T, K>& c, int k, const T* px, const T* py, const T* pz,
+                  std::uint32_t mask, T* f, T* mag, T magk) const noexcept {
+    constexpr int P = packet_width;
+    const T cx = c.cx[k], cy = c.cy[k], cz = c.cz[k], far2 = c.far2[k];
+    const T nx = c.nx[k], ny = c.ny[k], nz = c.nz[k];
+    const T m0 = c.m[0][k], m1 = c.m[1][k], m2 = c.m[2][k], m3 = c.m[3][k], m4 = c.m[4][k],
+            m5 = c.m[5][k], m6 = c.m[6][k], m7 = c.m[7][k], m8 = c.m[8][k];
+    const T trace = m0 + m4 + m8;
+    alignas(64) std::uint8_t is_far[P];
+    alignas(64) T rx[P], ry[P], rz[P], len[P];
+    for (int j = 0; j < P; ++j) { // the arithmetic of `operator()`, over the points
+      rx[j] = cx - px[j], ry[j] = cy - py[j], rz[j] = cz - pz[j];
+      const T r2 = rx[j] * rx[j] + ry[j] * ry[j] + rz[j] * rz[j];
+      is_far[j] = r2 > far2;
+      len[j] = is_far[j] ? r2 : T(1);
+    }
+    std::uint32_t bits = 0;
+    for (int j = 0; j < P; ++j) bits |= std::uint32_t(is_far[j]) << j;
+    // A child no point of the packet takes as far adds +0 to every f[j], which leaves it as
+    // it is (f starts at +0 and a sum is -0 only when both terms are): skip its far fields.
+    if ((bits & mask) == 0) return bits;
+    detail::sqrt_lanes<I, P>(len);
+    for (int j = 0; j < P; ++j) {
+      const T inv_r = T(1) / len[j];
+      const T ux = rx[j] * inv_r, uy = ry[j] * inv_r, uz = rz[j] * inv_r;
+      const T inv_r2 = inv_r * inv_r;
+      const T order1 = (nx * ux + ny * uy + nz * uz) * inv_r2;
+      const T quad = ux * (m0 * ux + m1 * uy + m2 * uz) + uy * (m3 * ux + m4 * uy + m5 * uz) +
+                     uz * (m6 * ux + m7 * uy + m8 * uz);
+      const T v = order1 + (trace - T(3) * quad) * inv_r2 * inv_r;
+      f[j] += is_far[j] ? v : T(0);
+    }
+    if constexpr (Mag)
+      for (int j = 0; j < P; ++j) mag[j] += is_far[j] ? magk : T(0);
+    return bits;
+  }
+
+  /// Runs a packet's traversal from the nodes on `todo` to the end (see `packet_sums_inline`);
+  /// with `Mag`, mag[j] sums `RangeNode::magf` over the children point j takes as far. `pops`
+  /// counts the nodes taken from the stack.
+  template <bool Approx, bool Mag, Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
+  drain(Stack& todo, const T* px, const T* py, const T* pz, const double* dx, const double* dy,
+        const double* dz, T* far_sum, double* near, double* cnt, T* mag,
+        std::uint32_t& pops) const noexcept {
+    constexpr int P = packet_width;
+    constexpr T inv4pi_t = T(0.07957747154594767);
+    alignas(64) T f[P];
     while (!todo.empty()) {
       const Item it = todo.pop();
+      ++pops;
       const WindingNode<T, K>& c = nodes_[it.node];
       const bvh::WideNode<T, K>& node = bvh_.nodes[it.node];
       std::uint32_t far_bits[K];
       for (int j = 0; j < P; ++j) f[j] = T(0);
       for (int k = 0; k < K; ++k) {
-        const T cx = c.cx[k], cy = c.cy[k], cz = c.cz[k], far2 = c.far2[k];
-        const T nx = c.nx[k], ny = c.ny[k], nz = c.nz[k];
-        const T m0 = c.m[0][k], m1 = c.m[1][k], m2 = c.m[2][k], m3 = c.m[3][k], m4 = c.m[4][k],
-                m5 = c.m[5][k], m6 = c.m[6][k], m7 = c.m[7][k], m8 = c.m[8][k];
-        const T trace = m0 + m4 + m8;
-        alignas(64) std::uint8_t is_far[P];
-        alignas(64) T rx[P], ry[P], rz[P], len[P];
-        for (int j = 0; j < P; ++j) { // the arithmetic of `operator()`, over the points
-          rx[j] = cx - px[j], ry[j] = cy - py[j], rz[j] = cz - pz[j];
-          const T r2 = rx[j] * rx[j] + ry[j] * ry[j] + rz[j] * rz[j];
-          is_far[j] = r2 > far2;
-          len[j] = is_far[j] ? r2 : T(1);
-        }
-        std::uint32_t bits = 0;
-        for (int j = 0; j < P; ++j) bits |= std::uint32_t(is_far[j]) << j;
-        far_bits[k] = bits;
-        // A child no point of the packet takes as far adds +0 to every f[j], which leaves it as
-        // it is (f starts at +0 and a sum is -0 only when both terms are): skip its far fields.
-        if ((bits & it.mask) == 0) continue;
-        detail::sqrt_lanes<I, P>(len);
-        for (int j = 0; j < P; ++j) {
-          const T inv_r = T(1) / len[j];
-          const T ux = rx[j] * inv_r, uy = ry[j] * inv_r, uz = rz[j] * inv_r;
-          const T inv_r2 = inv_r * inv_r;
-          const T order1 = (nx * ux + ny * uy + nz * uz) * inv_r2;
-          const T quad = ux * (m0 * ux + m1 * uy + m2 * uz) + uy * (m3 * ux + m4 * uy + m5 * uz) +
-                         uz * (m6 * ux + m7 * uy + m8 * uz);
-          const T v = order1 + (trace - T(3) * quad) * inv_r2 * inv_r;
-          f[j] += is_far[j] ? v : T(0);
-        }
+        T magk = T(0);
+        if constexpr (Mag) magk = range_nodes_[it.node].magf[k];
+        far_bits[k] = child_far_lanes<Mag, I>(c, k, px, py, pz, it.mask, f, mag, magk);
       }
       for (int j = 0; j < P; ++j) {
         const T a = far_sum[j] + f[j] * inv4pi_t;
@@ -714,6 +804,169 @@ template <class T, int K = 4> class FastWindingNumber {
           leaf_sum_packet<Approx, I>(r.index, r.count, dx, dy, dz, open, near, cnt);
         else if (r.is_inner())
           todo.push({r.index, open});
+      }
+    }
+  }
+
+  /// What `bound_batch` shares between the points of a batch (a box `x`): the far fields of the
+  /// children far from every point of the box (at least `batch_kappa` times the box's radius
+  /// away, and far by the query's test with its rounding margin) as one model, the value and
+  /// gradient of their sum at the box's centre and a bound on the sum's Hessian over the box;
+  /// the leaves every point opens; and the children some points take as far and others open
+  /// (`item_node`, `item_k`), which each point tests itself.
+  struct Frontier {
+    static constexpr std::uint32_t capacity = 512;
+    double value = 0, hess = 0;
+    Vec3<double> grad{0, 0, 0};
+    double mag = 0;   ///< Σ `RangeNode::magf` of the model's children
+    double slack = 0; ///< Σ magnitudes of the model's terms (for its rounding in double)
+    std::uint32_t nodes = 0, items = 0, leaves = 0;
+    std::uint32_t item_node[capacity];
+    std::uint8_t item_k[capacity];
+    bvh::ChildRef leaf[capacity];
+  };
+
+  /// Fills `fr` for the box `x` (a walk of the tree as one query at the box would make, in
+  /// double); false when it does not fit or a bound fails (the caller then takes the packets).
+  bool frontier(const detail::RangeBox& x, Frontier& fr) const noexcept {
+    const double e = 16 * double(std::numeric_limits<T>::epsilon()); // as in `node_range`
+    const double kr = batch_kappa * x.rho, kr2 = kr * kr;
+    bvh::FixedStack<std::uint32_t, bvh::WideBvh<T, K>::stack_capacity> todo;
+    todo.push(bvh_.root.index);
+    while (!todo.empty()) {
+      const std::uint32_t ni = todo.pop();
+      ++fr.nodes;
+      const WindingNode<T, K>& c = nodes_[ni];
+      const RangeNode& rc = range_nodes_[ni];
+      const bvh::WideNode<T, K>& node = bvh_.nodes[ni];
+      for (int k = 0; k < K; ++k) {
+        const bvh::ChildRef r = node.child[k];
+        if (r.is_empty()) continue;
+        const Vec3<double> ctr{double(c.cx[k]), double(c.cy[k]), double(c.cz[k])};
+        const double far2 = double(c.far2[k]);
+        const double dmin2 = x.box.distance2(ctr), dmax2 = x.box.max_distance2(ctr);
+        if (dmin2 * (1 - e) > far2 && dmin2 >= kr2) { // far for every point: the model
+          detail::RangeSum fv;
+          far_range(fv, x, c, rc, k, true, std::sqrt(dmin2));
+          if (!fv.ok) return false;
+          fr.value += fv.value, fr.grad += fv.grad, fr.hess += fv.hess;
+          fr.mag += double(rc.magf[k]);
+          fr.slack += std::abs(fv.value) + fv.mag +
+                      x.rho * (std::abs(fv.grad.x) + std::abs(fv.grad.y) + std::abs(fv.grad.z));
+        } else if (dmax2 * (1 + e) <= far2) { // near for every point
+          if (r.is_leaf()) {
+            if (fr.leaves == Frontier::capacity) return false;
+            fr.leaf[fr.leaves++] = r;
+          } else if (r.is_inner()) {
+            todo.push(r.index);
+          }
+        } else {
+          if (fr.items == Frontier::capacity) return false;
+          fr.item_node[fr.items] = ni;
+          fr.item_k[fr.items++] = std::uint8_t(k);
+        }
+      }
+    }
+    return std::isfinite(fr.value) && std::isfinite(fr.hess) && std::isfinite(fr.mag) &&
+           std::isfinite(fr.slack) && all_finite(fr.grad);
+  }
+
+  /// A packet's part of `bound_batch` for the points of `fr`'s box: the near sums of `fr`'s
+  /// leaves (with `detail::atan2_bounded`, counted in cnt), and for each of its children the
+  /// query's far test per point, the far field at the points that take it as far (added to
+  /// far_sum, in T) and a traversal below it for the others, as `packet_sums_inline`; mag[j]
+  /// sums `RangeNode::magf` over the children point j takes as far here, `pops` counts the
+  /// nodes and children visited.
+  template <Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
+  frontier_sums_inline(const Frontier& fr, const Vec3<T>* pts, int n, T* far_sum, double* near,
+                       double* cnt, T* mag, std::uint32_t& pops) const noexcept {
+    constexpr int P = packet_width;
+    constexpr T inv4pi_t = T(0.07957747154594767);
+    alignas(64) T px[P], py[P], pz[P], f[P];
+    alignas(64) double dx[P], dy[P], dz[P];
+    for (int j = 0; j < P; ++j) {
+      const Vec3<T>& q = pts[j < n ? j : n - 1]; // spare lanes repeat the last point, masked
+      px[j] = q.x, py[j] = q.y, pz[j] = q.z;
+      dx[j] = double(q.x), dy[j] = double(q.y), dz[j] = double(q.z);
+      far_sum[j] = T(0), near[j] = 0, cnt[j] = 0, mag[j] = T(0);
+    }
+    const std::uint32_t all = n >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << n) - 1;
+    for (std::uint32_t i = 0; i < fr.leaves; ++i)
+      leaf_sum_packet<true, I>(fr.leaf[i].index, fr.leaf[i].count, dx, dy, dz, all, near, cnt);
+    Stack todo;
+    pops = 0;
+    for (std::uint32_t i = 0; i < fr.items; ++i) {
+      const std::uint32_t ni = fr.item_node[i];
+      const int k = fr.item_k[i];
+      for (int j = 0; j < P; ++j) f[j] = T(0);
+      const std::uint32_t bits = child_far_lanes<true, I>(nodes_[ni], k, px, py, pz, all, f, mag,
+                                                          range_nodes_[ni].magf[k]);
+      ++pops;
+      for (int j = 0; j < P; ++j) far_sum[j] += f[j] * inv4pi_t;
+      const std::uint32_t open = all & ~bits;
+      if (open == 0) continue;
+      const bvh::ChildRef r = bvh_.nodes[ni].child[k];
+      if (r.is_leaf()) {
+        leaf_sum_packet<true, I>(r.index, r.count, dx, dy, dz, open, near, cnt);
+      } else if (r.is_inner()) {
+        todo.push({r.index, open});
+        drain<true, true, I>(todo, px, py, pz, dx, dy, dz, far_sum, near, cnt, mag, pops);
+      }
+    }
+  }
+
+  /// `bound_batch` over n <= `batch_size` points.
+  void bound_chunk(const Vec3<T>* pts, std::size_t n, T* lo, T* hi) const noexcept {
+    constexpr int P = packet_width;
+    const auto by_packets = [&] {
+      for (std::size_t i = 0; i < n; i += std::size_t(P))
+        bound_packet(pts + i, int(std::min(n - i, std::size_t(P))), lo + i, hi + i);
+    };
+    if (n <= std::size_t(P) || !bvh_.root.is_inner()) return by_packets();
+    Aabb<double> box;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!all_finite(pts[i])) return by_packets(); // NaN: no claim, per point
+      box.extend(Vec3<double>::from(pts[i]));
+    }
+    const detail::RangeBox x(box);
+    Frontier fr;
+    if (!frontier(x, fr)) return by_packets();
+    const double eps = double(std::numeric_limits<T>::epsilon());
+    const T inf = std::numeric_limits<T>::infinity();
+    alignas(64) T far_sum[P], mag[P];
+    alignas(64) double near[P], cnt[P];
+    for (std::size_t i = 0; i < n; i += std::size_t(P)) {
+      const int m = int(std::min(n - i, std::size_t(P)));
+      std::uint32_t pops = 0;
+      with_active_isa([&](auto isa) {
+        detail::WindingKernels<decltype(isa)::value>::frontier_sums(*this, fr, pts + i, m, far_sum,
+                                                                    near, cnt, mag, pops);
+      });
+      // Rounding: `operator()` sums the far fields of the point's far children in T, each
+      // computed with at most 64 roundings relative to its `magf` and then added through at most
+      // K + 2 + (nodes visited) sums; our far_sum adds those of the items the same way. Both are
+      // within (nodes + K + 66) eps Σ magf of the exact sum of the same terms (with the model's
+      // terms exact up to their Taylor remainder and their own rounding in double).
+      const double steps = double(fr.nodes) + double(pops) + K + 66;
+      const double mag_slack = 1 + 2 * (double(pops) * K + K) * eps; // mag[j] summed in T
+      for (int j = 0; j < m; ++j) {
+        const Vec3<double> d = Vec3<double>::from(pts[i + std::size_t(j)]) - x.c;
+        const double e = sign_bound(near[j], cnt[j]);
+        const double alo = double(T((near[j] - e) * inv4pi));
+        const double ahi = double(T((near[j] + e) * inv4pi));
+        const double model = fr.value + (fr.grad.x * d.x + fr.grad.y * d.y + fr.grad.z * d.z);
+        const double fs = double(far_sum[j]);
+        const double r = 2 * steps * eps * (fr.mag + double(mag[j]) * mag_slack) +
+                         0.5 * fr.hess * dot(d, d) * (1 + 1e-9) + 1e-12 * fr.slack;
+        const double sl =
+            1e-12 * (std::abs(alo) + std::abs(ahi) + std::abs(fs) + std::abs(model) + r) + 1e-300;
+        const double l = alo + fs + model - r - sl, h = ahi + fs + model + r + sl;
+        const bool ok = std::isfinite(l) && std::isfinite(h);
+        // `operator()` returns T(a + far) with a in [alo, ahi], far in [fs + model - r, ...]:
+        // its rounding to T is non-decreasing, so T rounded outwards bounds it.
+        lo[i + std::size_t(j)] = ok ? round_down(l) : -inf;
+        hi[i + std::size_t(j)] = ok ? round_up(h) : inf;
       }
     }
   }
@@ -904,6 +1157,10 @@ template <class T, int K = 4> class FastWindingNumber {
   /// rounded down (12 B per child in float).
   struct RangeNode {
     T nrm[K], fro[K], dfar[K];
+    /// A bound on the magnitudes inside a query's float evaluation of the child's far field
+    /// (|N| / r² + (|tr M| + 9 |M|) / r³ over 4π at r >= dfar, rounded up), plus an absolute
+    /// 1e-30 (1 / dfar² + 1 / dfar³) for underflow: `bound_batch`'s rounding margins.
+    T magf[K];
   };
   static T round_up(double v) noexcept {
     const T f = T(v);
@@ -1070,6 +1327,16 @@ template <class T, int K = 4> class FastWindingNumber {
       rn.fro[k] = round_up(std::sqrt(fro2) * (1 + 1e-12));
       // A query calls a cluster far beyond sqrt(far2) / (1 + e) at least (`node_range`).
       rn.dfar[k] = round_down(std::sqrt(double(wn.far2[k]) / (1 + e)) * (1 - 1e-12));
+      const double tr = double(wn.m[0][k]) + double(wn.m[4][k]) + double(wn.m[8][k]);
+      const double il = 1 / double(rn.dfar[k]), il2 = il * il, il3 = il2 * il;
+      const double mg =
+          (double(rn.nrm[k]) * il2 + (std::abs(tr) + 9 * double(rn.fro[k])) * il3) * inv4pi +
+          1e-30 * (il2 + il3);
+      // Empty slots (never far) add nothing; a zero dfar gives +inf (no claim).
+      rn.magf[k] = bvh_.nodes[ni].child[k].is_empty() ? T(0)
+                   : double(rn.dfar[k]) > 0 && std::isfinite(mg)
+                       ? round_up(mg * (1 + 1e-12))
+                       : std::numeric_limits<T>::infinity();
     }
     range_nodes_[ni] = rn;
   }
