@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -402,6 +403,46 @@ EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE double atan2_bounded(double y, double 
   // x - x and y - y: 0 for finite inputs, NaN for infinite or NaN ones (the sign of y kept).
   return copysign(t + ((x - x) + (y - y)), y);
 }
+
+/// Largest |`atan2_bounded_f(y, x)` - atan2(y, x)| over all finite float (y, x): see
+/// `atan2_bounded_f`.
+inline constexpr double atan2_bounded_f_error = 4e-6;
+
+/// `atan2_bounded` in float arithmetic (the same polynomial, coefficients rounded to float), for
+/// the float lanes of `FastWindingNumber::bound_batch`. The bound: the polynomial's own error
+/// 2.4e-7 (`atan2_bounded`), 6e-8 from the rounded coefficients (u Σ |c_k|, u = 2⁻²⁴), the
+/// division's u a <= 6e-8, the Horner steps' roundings (|t| <= 1/3 and |c| <= 1/3 at every step,
+/// two roundings each, propagated through factors a² <= 1: at most 20 u <= 1.2e-6 with the
+/// final product), and the reflections π/2 - t, π - t (3e-7): 1.9e-6 < 4e-6.
+/// tests/unit/sign/winding_test.cpp checks it at 2²⁰ ratios against `std::atan2` in double.
+EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE float atan2_bounded_f(float y, float x) noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+  const auto fabs = [](float v) { return __builtin_fabsf(v); };
+  const auto copysign = [](float m, float sg) { return __builtin_copysignf(m, sg); };
+#else
+  const auto fabs = [](float v) { return std::abs(v); };
+  const auto copysign = [](float m, float sg) { return std::copysign(m, sg); };
+#endif
+  constexpr float c1 = -0.3333314528f, c2 = 0.1999355085f, c3 = -0.1420889944f, c4 = 0.1065626393f,
+                  c5 = -0.0752896400f, c6 = 0.0429096138f, c7 = -0.0161657367f, c8 = 0.0028662257f;
+  constexpr float pi_2 = 1.5707963267948966f, pi_1 = 3.141592653589793f;
+  const float ax = fabs(x), ay = fabs(y);
+  const float hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
+  const float a = lo / (hi > 0 ? hi : 1.0f);
+  const float a2 = a * a;
+  float t = c8;
+  t = t * a2 + c7;
+  t = t * a2 + c6;
+  t = t * a2 + c5;
+  t = t * a2 + c4;
+  t = t * a2 + c3;
+  t = t * a2 + c2;
+  t = t * a2 + c1;
+  t = (t * a2 + 1.0f) * a;
+  t = ay > ax ? pi_2 - t : t;
+  t = copysign(1.0f, x) < 0 ? pi_1 - t : t;
+  return copysign(t + ((x - x) + (y - y)), y);
+}
 } // namespace detail
 
 namespace detail {
@@ -419,8 +460,8 @@ namespace detail {
   template <class W, class F, class T>                                                             \
   TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static void frontier_sums(                          \
       const W& w, const F& fr, const Vec3<T>* pts, int n, T* far_sum, double* near, double* cnt,   \
-      T* mag, std::uint32_t& pops) noexcept {                                                      \
-    w.template frontier_sums_inline<I>(fr, pts, n, far_sum, near, cnt, mag, pops);                 \
+      T* mag, double* errn, std::uint32_t& pops) noexcept {                                        \
+    w.template frontier_sums_inline<I>(fr, pts, n, far_sum, near, cnt, mag, errn, pops);           \
   }
 
 template <Isa I> struct WindingKernels { EBGEOM_WINDING_KERNELS(I, ) };
@@ -635,8 +676,10 @@ template <class T, int K = 4> class FastWindingNumber {
   /// far from the chunk's whole box are evaluated once, at the box's centre, as a first-order
   /// model with a bound on its second-order remainder over the box (`far_range`); each point
   /// evaluates the rest (its own far tests, far fields and near leaves) in packets of
-  /// `packet_width`. The interval is wider than `bound_packet`'s by the model's remainder and the
-  /// far sums' rounding (about 1e-4 on a grid tile of the bunny). Thread-safe.
+  /// `packet_width`; with T = float, the near solid angles in float (`leaf_lanes_f`). The
+  /// interval is wider than `bound_packet`'s by the model's remainder, the far sums' rounding and
+  /// the float angles' error (about 0.06 on average on the bunny's tiles at 256³). Batches of at
+  /// most `packet_width` points, a root leaf or a NaN point take `bound_packet`. Thread-safe.
   void bound_batch(const Vec3<T>* pts, std::size_t n, T* lo, T* hi) const noexcept {
     for (std::size_t i = 0; i < n; i += batch_size)
       bound_chunk(pts + i, std::min(n - i, batch_size), lo + i, hi + i);
@@ -717,7 +760,8 @@ template <class T, int K = 4> class FastWindingNumber {
     Stack todo;
     todo.push({root.index, all});
     std::uint32_t pops = 0;
-    drain<Approx, false, I>(todo, px, py, pz, dx, dy, dz, far_sum, near, cnt, nullptr, pops);
+    drain<Approx, false, I>(todo, px, py, pz, dx, dy, dz, far_sum, near, cnt, nullptr, nullptr,
+                            pops);
   }
 
   /// A node of a packet's traversal, and the points that open it (bit j: point j).
@@ -775,7 +819,7 @@ template <class T, int K = 4> class FastWindingNumber {
   template <bool Approx, bool Mag, Isa I>
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
   drain(Stack& todo, const T* px, const T* py, const T* pz, const double* dx, const double* dy,
-        const double* dz, T* far_sum, double* near, double* cnt, T* mag,
+        const double* dz, T* far_sum, double* near, double* cnt, T* mag, double* errn,
         std::uint32_t& pops) const noexcept {
     constexpr int P = packet_width;
     constexpr T inv4pi_t = T(0.07957747154594767);
@@ -801,7 +845,7 @@ template <class T, int K = 4> class FastWindingNumber {
         if (open == 0) continue;
         const bvh::ChildRef r = node.child[k];
         if (r.is_leaf())
-          leaf_sum_packet<Approx, I>(r.index, r.count, dx, dy, dz, open, near, cnt);
+          leaf_any<Approx, Mag, I>(r.index, r.count, px, py, pz, dx, dy, dz, open, near, cnt, errn);
         else if (r.is_inner())
           todo.push({r.index, open});
       }
@@ -880,7 +924,7 @@ template <class T, int K = 4> class FastWindingNumber {
   template <Isa I>
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
   frontier_sums_inline(const Frontier& fr, const Vec3<T>* pts, int n, T* far_sum, double* near,
-                       double* cnt, T* mag, std::uint32_t& pops) const noexcept {
+                       double* cnt, T* mag, double* errn, std::uint32_t& pops) const noexcept {
     constexpr int P = packet_width;
     constexpr T inv4pi_t = T(0.07957747154594767);
     alignas(64) T px[P], py[P], pz[P], f[P];
@@ -889,11 +933,12 @@ template <class T, int K = 4> class FastWindingNumber {
       const Vec3<T>& q = pts[j < n ? j : n - 1]; // spare lanes repeat the last point, masked
       px[j] = q.x, py[j] = q.y, pz[j] = q.z;
       dx[j] = double(q.x), dy[j] = double(q.y), dz[j] = double(q.z);
-      far_sum[j] = T(0), near[j] = 0, cnt[j] = 0, mag[j] = T(0);
+      far_sum[j] = T(0), near[j] = 0, cnt[j] = 0, mag[j] = T(0), errn[j] = 0;
     }
     const std::uint32_t all = n >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << n) - 1;
     for (std::uint32_t i = 0; i < fr.leaves; ++i)
-      leaf_sum_packet<true, I>(fr.leaf[i].index, fr.leaf[i].count, dx, dy, dz, all, near, cnt);
+      leaf_any<true, true, I>(fr.leaf[i].index, fr.leaf[i].count, px, py, pz, dx, dy, dz, all, near,
+                              cnt, errn);
     Stack todo;
     pops = 0;
     for (std::uint32_t i = 0; i < fr.items; ++i) {
@@ -908,10 +953,10 @@ template <class T, int K = 4> class FastWindingNumber {
       if (open == 0) continue;
       const bvh::ChildRef r = bvh_.nodes[ni].child[k];
       if (r.is_leaf()) {
-        leaf_sum_packet<true, I>(r.index, r.count, dx, dy, dz, open, near, cnt);
+        leaf_any<true, true, I>(r.index, r.count, px, py, pz, dx, dy, dz, open, near, cnt, errn);
       } else if (r.is_inner()) {
         todo.push({r.index, open});
-        drain<true, true, I>(todo, px, py, pz, dx, dy, dz, far_sum, near, cnt, mag, pops);
+        drain<true, true, I>(todo, px, py, pz, dx, dy, dz, far_sum, near, cnt, mag, errn, pops);
       }
     }
   }
@@ -935,13 +980,13 @@ template <class T, int K = 4> class FastWindingNumber {
     const double eps = double(std::numeric_limits<T>::epsilon());
     const T inf = std::numeric_limits<T>::infinity();
     alignas(64) T far_sum[P], mag[P];
-    alignas(64) double near[P], cnt[P];
+    alignas(64) double near[P], cnt[P], errn[P];
     for (std::size_t i = 0; i < n; i += std::size_t(P)) {
       const int m = int(std::min(n - i, std::size_t(P)));
       std::uint32_t pops = 0;
       with_active_isa([&](auto isa) {
         detail::WindingKernels<decltype(isa)::value>::frontier_sums(*this, fr, pts + i, m, far_sum,
-                                                                    near, cnt, mag, pops);
+                                                                    near, cnt, mag, errn, pops);
       });
       // Rounding: `operator()` sums the far fields of the point's far children in T, each
       // computed with at most 64 roundings relative to its `magf` and then added through at most
@@ -952,7 +997,8 @@ template <class T, int K = 4> class FastWindingNumber {
       const double mag_slack = 1 + 2 * (double(pops) * K + K) * eps; // mag[j] summed in T
       for (int j = 0; j < m; ++j) {
         const Vec3<double> d = Vec3<double>::from(pts[i + std::size_t(j)]) - x.c;
-        const double e = sign_bound(near[j], cnt[j]);
+        // The near sum: as `bound_packet`'s, plus (T = float) the float angles' own error.
+        const double e = sign_bound(near[j], cnt[j]) + errn[j] * (1 + 1e-9);
         const double alo = double(T((near[j] - e) * inv4pi));
         const double ahi = double(T((near[j] + e) * inv4pi));
         const double model = fr.value + (fr.grad.x * d.x + fr.grad.y * d.y + fr.grad.z * d.z);
@@ -1137,6 +1183,118 @@ template <class T, int K = 4> class FastWindingNumber {
       const double c = double(count);
       for (int j = 0; j < P; ++j) cnt[j] += (open >> j) & 1u ? c : 0.0;
     }
+  }
+
+  /// For `bound_batch` (T = float): s[j] = Σ of the solid angles of slots [first, first + count)
+  /// at point j, computed in float with `detail::atan2_bounded_f`, and err[j] a bound on its
+  /// distance to `leaf_sum`'s terms (before their sum). Per triangle: the float num and den (the
+  /// arithmetic of `solid_angle_terms`, inputs a - p etc. rounded) are within 15.6 u M and 53 u M
+  /// of the exact ones (u = 2⁻²⁴, M = |a||b||c|: the triple product's six terms sum to at most
+  /// √3 M, the four terms of den to 4 M; ≤ 5 roundings deep), so (num, den) is within
+  /// D = 128 u M (computed M, rounded) of the exact point, and the angle 2 atan2 within π D / R,
+  /// R = |(num, den)| >= (|num| + |den|) / √2, when D < R / 2 and the disk does not reach the
+  /// branch cut (num = 0, den < 0); otherwise, or where M is tiny (underflow), err is +inf. Plus
+  /// twice `atan2_bounded_f_error` and `std::atan2`'s own 1 ulp.
+  template <Isa I, int N>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
+  leaf_lanes_f(std::uint32_t first, std::uint32_t count, const float* px, const float* py,
+               const float* pz, float* s, float* err) const noexcept {
+    const T* t = tri_.data();
+    const std::size_t n = n_;
+    constexpr float kd = float(128 * 5.9604644775390625e-08);
+    constexpr float kpi = float(3.141592653589793 * 1.001);
+    constexpr float kat = float(2 * (detail::atan2_bounded_f_error + 1e-15));
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    alignas(64) float la[N], lb[N], lc[N];
+    for (int j = 0; j < N; ++j) s[j] = 0, err[j] = 0;
+    for (std::size_t i = first; i < std::size_t(first) + count; ++i) {
+      const float ax = float(t[0 * n + i]), ay = float(t[1 * n + i]), az = float(t[2 * n + i]);
+      const float bx = float(t[3 * n + i]), by = float(t[4 * n + i]), bz = float(t[5 * n + i]);
+      const float cx = float(t[6 * n + i]), cy = float(t[7 * n + i]), cz = float(t[8 * n + i]);
+      for (int j = 0; j < N; ++j) {
+        const float rax = ax - px[j], ray = ay - py[j], raz = az - pz[j];
+        const float rbx = bx - px[j], rby = by - py[j], rbz = bz - pz[j];
+        const float rcx = cx - px[j], rcy = cy - py[j], rcz = cz - pz[j];
+        la[j] = rax * rax + ray * ray + raz * raz;
+        lb[j] = rbx * rbx + rby * rby + rbz * rbz;
+        lc[j] = rcx * rcx + rcy * rcy + rcz * rcz;
+      }
+      detail::sqrt_lanes<I, N>(la);
+      detail::sqrt_lanes<I, N>(lb);
+      detail::sqrt_lanes<I, N>(lc);
+      for (int j = 0; j < N; ++j) {
+        const float rax = ax - px[j], ray = ay - py[j], raz = az - pz[j];
+        const float rbx = bx - px[j], rby = by - py[j], rbz = bz - pz[j];
+        const float rcx = cx - px[j], rcy = cy - py[j], rcz = cz - pz[j];
+        const float kx = rby * rcz - rbz * rcy, ky = rbz * rcx - rbx * rcz,
+                    kz = rbx * rcy - rby * rcx;
+        const float num = rax * kx + ray * ky + raz * kz;
+        const float m = la[j] * lb[j] * lc[j];
+        const float den = m + (rax * rbx + ray * rby + raz * rbz) * lc[j] +
+                          (rbx * rcx + rby * rcy + rbz * rcz) * la[j] +
+                          (rcx * rax + rcy * ray + rcz * raz) * lb[j];
+        const float an = num < 0 ? -num : num, ad = den < 0 ? -den : den;
+        const float d = kd * m, rlo = (an + ad) * 0.707f;
+        // Bitwise, not short-circuit: the loop stays branch-free (it vectorises).
+        const bool ok = (rlo > 2 * d) & ((an > d) | (den > d)) & (m > 1e-30f);
+        s[j] += 2.0f * detail::atan2_bounded_f(num, den);
+        err[j] += ok ? kpi * d / rlo + kat : inf;
+      }
+    }
+  }
+
+  /// `leaf_sum_packet` for `bound_batch` with float lanes (`leaf_lanes_f`, T = float): adds to
+  /// near[j] the leaf's float sum, to cnt[j] its count and to errn[j] its error (the terms'
+  /// bounds, summed in float and widened for that sum, plus the float sum's own rounding: at most
+  /// count u Σ |terms| <= count² u 2π), at the points whose bit is set in `open`, gathered into
+  /// 16 lanes when at most 16 points open the leaf.
+  template <Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
+  leaf_sum_packet_f(std::uint32_t first, std::uint32_t count, const float* px, const float* py,
+                    const float* pz, std::uint32_t open, double* near, double* cnt,
+                    double* errn) const noexcept {
+    constexpr int P = packet_width;
+    alignas(64) float s[P], e[P];
+    int idx[P], m = 0;
+    for (int j = 0; j < P; ++j)
+      if ((open >> j) & 1u) idx[m++] = j;
+    const double c = double(count);
+    const double sum_err = c * c * 5.9604644775390625e-08 * 6.283185307179586 * 1.01;
+    const double widen = 1 + 2 * (c + 1) * 5.9604644775390625e-08;
+    if (m > 16) {
+      leaf_lanes_f<I, P>(first, count, px, py, pz, s, e);
+      for (int j = 0; j < P; ++j)
+        if ((open >> j) & 1u) {
+          near[j] += double(s[j]);
+          cnt[j] += c;
+          errn[j] += double(e[j]) * widen + sum_err;
+        }
+    } else {
+      alignas(64) float qx[16], qy[16], qz[16];
+      for (int k = 0; k < 16; ++k) {
+        const int j = idx[k < m ? k : m - 1];
+        qx[k] = px[j], qy[k] = py[j], qz[k] = pz[j];
+      }
+      leaf_lanes_f<I, 16>(first, count, qx, qy, qz, s, e);
+      for (int k = 0; k < m; ++k) {
+        near[idx[k]] += double(s[k]);
+        cnt[idx[k]] += c;
+        errn[idx[k]] += double(e[k]) * widen + sum_err;
+      }
+    }
+  }
+
+  /// The near sum of a leaf in a packet's traversal: `leaf_sum_packet`, or for `bound_batch`
+  /// (`Mag`) with T = float, `leaf_sum_packet_f`.
+  template <bool Approx, bool Mag, Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
+  leaf_any(std::uint32_t first, std::uint32_t count, const T* px, const T* py, const T* pz,
+           const double* dx, const double* dy, const double* dz, std::uint32_t open, double* near,
+           double* cnt, double* errn) const noexcept {
+    if constexpr (Mag && std::is_same_v<T, float>)
+      leaf_sum_packet_f<I>(first, count, px, py, pz, open, near, cnt, errn);
+    else
+      leaf_sum_packet<Approx, I>(first, count, dx, dy, dz, open, near, cnt);
   }
 
   /// Adds the exact solid angles of slots [first, first + count) over the box.

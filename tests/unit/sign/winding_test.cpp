@@ -294,6 +294,41 @@ TEST(WindingBoundedAtan2, WithinItsBoundOfStdAtan2) {
   }
 }
 
+TEST(WindingBoundedAtan2, FloatWithinItsBoundOfStdAtan2) {
+  const double bound = detail::atan2_bounded_f_error;
+  double worst = 0;
+  const auto check = [&](float y, float x) {
+    const double a = double(detail::atan2_bounded_f(y, x)), e = std::atan2(double(y), double(x));
+    worst = std::max(worst, std::abs(a - e));
+    ASSERT_LE(std::abs(a - e), bound) << "atan2(" << y << ", " << x << ") = " << e << ", got " << a;
+  };
+  constexpr int n = 1 << 20; // every octant, 2^20 ratios
+  for (int i = 0; i <= n; ++i) {
+    const float a = float(i) / float(n);
+    for (const float sx : {1.0f, -1.0f})
+      for (const float sy : {1.0f, -1.0f}) {
+        check(sy * a, sx);
+        check(sy, sx * a);
+      }
+  }
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<double> expo(-148, 126), unit(-1, 1);
+  for (int i = 0; i < 200000; ++i)
+    check(float(unit(rng) * std::exp2(expo(rng))), float(unit(rng) * std::exp2(expo(rng))));
+  const float specials[] = {0.0f,  -0.0f,  1e-40f, -1e-40f, 1.4e-45f, -1.4e-45f, 1.0f,
+                            -1.0f, 1e-30f, 1e30f,  -1e30f,  3.4e38f,  -3.4e38f,  0.5f};
+  for (const float y : specials)
+    for (const float x : specials) check(y, x);
+  EXPECT_LT(worst, 1.5e-6); // the bound is not vacuous
+  EXPECT_TRUE(std::signbit(detail::atan2_bounded_f(-0.0f, 1.0f)));
+  EXPECT_EQ(double(detail::atan2_bounded_f(-0.0f, -1.0f)), double(float(std::atan2(-0.0, -1.0))));
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::nanf("");
+  for (const float v : {inf, -inf, nan}) {
+    EXPECT_TRUE(std::isnan(detail::atan2_bounded_f(v, 1.0f))) << v;
+    EXPECT_TRUE(std::isnan(detail::atan2_bounded_f(1.0f, v))) << v;
+  }
+}
+
 /// Points where the fast winding number crosses 1/2 (through holes, across the surface), as close
 /// as the precision allows: bisection along segments from points with w > 1/2 to points with
 /// w <= 1/2 down to neighbouring representable points; both ends and the bisection's last
