@@ -31,36 +31,6 @@ EBGEOM_BEGIN_EXACT_FP
 
 namespace ebgeom {
 
-/// Squared distances from `p` to `n` boxes stored as structure of arrays (`lo_x[i]`, ...).
-namespace detail {
-template <class T>
-EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE void
-boxes_distance2_inline(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,
-                       const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx,
-                       const T* EBGEOM_RESTRICT hy, const T* EBGEOM_RESTRICT hz, const Vec3<T>& p,
-                       T* EBGEOM_RESTRICT out) noexcept {
-  const T px = p.x, py = p.y, pz = p.z;
-  // Ternaries, not std::max: the kernel's optimisation attribute keeps std::max from inlining.
-  // Runs of 16 (a loop of constant length, which GCC vectorises at -O2 as well), then the rest.
-  std::size_t i0 = 0;
-  for (; i0 + 16 <= n; i0 += 16)
-    for (std::size_t i = i0; i < i0 + 16; ++i) {
-      T ax = lx[i] - px, bx = px - hx[i], ay = ly[i] - py, by = py - hy[i], az = lz[i] - pz,
-        bz = pz - hz[i];
-      ax = ax < bx ? bx : ax, ay = ay < by ? by : ay, az = az < bz ? bz : az;
-      ax = ax < T(0) ? T(0) : ax, ay = ay < T(0) ? T(0) : ay, az = az < T(0) ? T(0) : az;
-      out[i] = ax * ax + ay * ay + az * az;
-    }
-  for (std::size_t i = i0; i < n; ++i) {
-    T ax = lx[i] - px, bx = px - hx[i], ay = ly[i] - py, by = py - hy[i], az = lz[i] - pz,
-      bz = pz - hz[i];
-    ax = ax < bx ? bx : ax, ay = ay < by ? by : ay, az = az < bz ? bz : az;
-    ax = ax < T(0) ? T(0) : ax, ay = ay < T(0) ? T(0) : ay, az = az < T(0) ? T(0) : az;
-    out[i] = ax * ax + ay * ay + az * az;
-  }
-}
-} // namespace detail
-
 namespace detail {
 /// Squared distances from box `b` to `n` boxes stored as structure of arrays, each as
 /// `MeshTileEval::box_box_distance2` computes it (same operations).
@@ -71,7 +41,8 @@ boxes_box_distance2_inline(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* 
                            const T* EBGEOM_RESTRICT hy, const T* EBGEOM_RESTRICT hz,
                            const Aabb<T>& b, T* EBGEOM_RESTRICT out) noexcept {
   const T blx = b.lo.x, bly = b.lo.y, blz = b.lo.z, bhx = b.hi.x, bhy = b.hi.y, bhz = b.hi.z;
-  // Runs of 16, then the rest (see `boxes_distance2_inline`).
+  // Ternaries, not std::max: the kernel's optimisation attribute keeps std::max from inlining.
+  // Runs of 16 (a loop of constant length, which GCC vectorises at -O2 as well), then the rest.
   std::size_t i0 = 0;
   for (; i0 + 16 <= n; i0 += 16)
     for (std::size_t i = i0; i < i0 + 16; ++i) {
@@ -88,6 +59,17 @@ boxes_box_distance2_inline(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* 
     ax = ax < T(0) ? T(0) : ax, ay = ay < T(0) ? T(0) : ay, az = az < T(0) ? T(0) : az;
     out[i] = ax * ax + ay * ay + az * az;
   }
+}
+
+/// Squared distances from `p` to `n` boxes stored as structure of arrays (`lo_x[i]`, ...): those
+/// from the box [p, p] (`boxes_box_distance2_inline`), the same operations on the same values.
+template <class T>
+EBGEOM_VECTOR_KERNEL EBGEOM_FORCE_INLINE void
+boxes_distance2_inline(std::size_t n, const T* EBGEOM_RESTRICT lx, const T* EBGEOM_RESTRICT ly,
+                       const T* EBGEOM_RESTRICT lz, const T* EBGEOM_RESTRICT hx,
+                       const T* EBGEOM_RESTRICT hy, const T* EBGEOM_RESTRICT hz, const Vec3<T>& p,
+                       T* EBGEOM_RESTRICT out) noexcept {
+  boxes_box_distance2_inline(n, lx, ly, lz, hx, hy, hz, Aabb<T>{p, p}, out);
 }
 } // namespace detail
 
