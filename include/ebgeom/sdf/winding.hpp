@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -457,11 +458,16 @@ namespace detail {
       const W& w, const Vec3<T>* pts, int n, T* far_sum, double* near, double* cnt) noexcept {     \
     w.template packet_sums_inline<Approx, I>(pts, n, far_sum, near, cnt);                          \
   }                                                                                                \
-  template <class W, class F, class T>                                                             \
-  TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static void frontier_sums(                          \
-      const W& w, const F& fr, const Vec3<T>* pts, int n, T* far_sum, double* near, double* cnt,   \
-      T* mag, double* errn, std::uint32_t& pops) noexcept {                                        \
-    w.template frontier_sums_inline<I>(fr, pts, n, far_sum, near, cnt, mag, errn, pops);           \
+  template <class W, class X, class F>                                                             \
+  TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static bool frontier(const W& w, const X& x,        \
+                                                                    F& fr) noexcept {              \
+    return w.template frontier_inline<I>(x, fr);                                                   \
+  }                                                                                                \
+  template <class W, class F, class X, class T>                                                    \
+  TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static void chunk_bounds(                           \
+      const W& w, const F& fr, const X& x, const Vec3<T>* pts, std::size_t n, T* lo,               \
+      T* hi) noexcept {                                                                            \
+    w.template chunk_bounds_inline<I>(fr, x, pts, n, lo, hi);                                      \
   }
 
 template <Isa I> struct WindingKernels { EBGEOM_WINDING_KERNELS(I, ) };
@@ -872,32 +878,97 @@ template <class T, int K = 4> class FastWindingNumber {
 
   /// Fills `fr` for the box `x` (a walk of the tree as one query at the box would make, in
   /// double); false when it does not fit or a bound fails (the caller then takes the packets).
-  bool frontier(const detail::RangeBox& x, Frontier& fr) const noexcept {
+  /// Per node, the K children's box distances, tests and models (`far_range`'s, with `whole`)
+  /// in loops over the children that vectorise; then the children in order. Inlined into the
+  /// kernels of instruction set I (`detail::WindingKernels`).
+  template <Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE bool frontier_inline(const detail::RangeBox& x,
+                                                                 Frontier& fr) const noexcept {
+    constexpr double i4p = 0.07957747154594767;
     const double e = 16 * double(std::numeric_limits<T>::epsilon()); // as in `node_range`
     const double kr = batch_kappa * x.rho, kr2 = kr * kr;
+    const double blx = x.box.lo.x, bly = x.box.lo.y, blz = x.box.lo.z;
+    const double bhx = x.box.hi.x, bhy = x.box.hi.y, bhz = x.box.hi.z;
+    const double xcx = x.c.x, xcy = x.c.y, xcz = x.c.z;
     bvh::FixedStack<std::uint32_t, bvh::WideBvh<T, K>::stack_capacity> todo;
     todo.push(bvh_.root.index);
+    bool ok = true;
     while (!todo.empty()) {
       const std::uint32_t ni = todo.pop();
       ++fr.nodes;
       const WindingNode<T, K>& c = nodes_[ni];
       const RangeNode& rc = range_nodes_[ni];
       const bvh::WideNode<T, K>& node = bvh_.nodes[ni];
+      alignas(64) double val[K], gx[K], gy[K], gz[K], hs[K], sl[K];
+      std::uint8_t model[K], all_near[K];
+      for (int k = 0; k < K; ++k) { // branch-free over the children: vectorisable
+        const double cx = double(c.cx[k]), cy = double(c.cy[k]), cz = double(c.cz[k]);
+        const double far2 = double(c.far2[k]);
+        const double ax = blx - cx > cx - bhx ? blx - cx : cx - bhx;
+        const double ay = bly - cy > cy - bhy ? bly - cy : cy - bhy;
+        const double az = blz - cz > cz - bhz ? blz - cz : cz - bhz;
+        const double mx = ax > 0 ? ax : 0.0, my = ay > 0 ? ay : 0.0, mz = az > 0 ? az : 0.0;
+        const double dmin2 = mx * mx + my * my + mz * mz;
+        const double fx = cx - blx > bhx - cx ? cx - blx : bhx - cx;
+        const double fy = cy - bly > bhy - cy ? cy - bly : bhy - cy;
+        const double fz = cz - blz > bhz - cz ? cz - blz : bhz - cz;
+        const double dmax2 = fx * fx + fy * fy + fz * fz;
+        // far for every point (and 2 box radii away): the model; empty slots have far2 = inf.
+        const bool is_model = (dmin2 * (1 - e) > far2) & (dmin2 >= kr2);
+        model[k] = is_model;
+        all_near[k] = dmax2 * (1 + e) <= far2;
+        // `far_range` with `whole` (dmin > 0 there), at harmless arguments elsewhere.
+        const double dmin = detail::winding_sqrt(is_model ? dmin2 : 1.0) * (1 - 1e-12);
+        const double dfar = double(rc.dfar[k]);
+        const double dlow = dmin > dfar ? dmin : dfar;
+        const double nrm = double(rc.nrm[k]), fro = double(rc.fro[k]);
+        const double tr = double(c.m[0][k]) + double(c.m[4][k]) + double(c.m[8][k]);
+        const double atr = tr < 0 ? -tr : tr;
+        const double il = 1 / (is_model ? dlow : 1.0), il2 = il * il, il3 = il2 * il;
+        const double mag = (nrm * il2 + (atr + 9 * fro) * il3) * i4p;
+        const double nx = double(c.nx[k]), ny = double(c.ny[k]), nz = double(c.nz[k]);
+        const double m0 = double(c.m[0][k]), m1 = double(c.m[1][k]), m2 = double(c.m[2][k]);
+        const double m3 = double(c.m[3][k]), m4 = double(c.m[4][k]), m5 = double(c.m[5][k]);
+        const double m6 = double(c.m[6][k]), m7 = double(c.m[7][k]), m8 = double(c.m[8][k]);
+        const double rx = cx - xcx, ry = cy - xcy, rz = cz - xcz;
+        const double r2 = rx * rx + ry * ry + rz * rz;
+        const double ir = 1 / detail::winding_sqrt(is_model ? r2 : 1.0), ir2 = ir * ir;
+        const double ir3 = ir2 * ir, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
+        // M r and Mᵀ r
+        const double mrx = m0 * rx + m1 * ry + m2 * rz, mry = m3 * rx + m4 * ry + m5 * rz,
+                     mrz = m6 * rx + m7 * ry + m8 * rz;
+        const double mtx = m0 * rx + m3 * ry + m6 * rz, mty = m1 * rx + m4 * ry + m7 * rz,
+                     mtz = m2 * rx + m5 * ry + m8 * rz;
+        const double g = tr * r2 - 3 * (rx * mrx + ry * mry + rz * mrz);
+        const double nr = nx * rx + ny * ry + nz * rz;
+        const double v = (nr * ir3 + g * ir5) * i4p;
+        // ∇_r of the term; ∇_p = -∇_r.
+        const double a1 = 3 * nr * ir5, a2 = 5 * g * ir7;
+        const double grx = nx * ir3 - rx * a1 + (rx * (2 * tr) - (mrx + mtx) * 3.0) * ir5 - rx * a2;
+        const double gry = ny * ir3 - ry * a1 + (ry * (2 * tr) - (mry + mty) * 3.0) * ir5 - ry * a2;
+        const double grz = nz * ir3 - rz * a1 + (rz * (2 * tr) - (mrz + mtz) * 3.0) * ir5 - rz * a2;
+        const double id = 1 / (is_model ? dmin : 1.0), id3 = id * id * id, id4 = id3 * id;
+        const double h = (6 * nrm * id4 + 41.6 * fro * (id4 * id)) * i4p;
+        const double ggx = grx * -i4p, ggy = gry * -i4p, ggz = grz * -i4p;
+        const double agx = ggx < 0 ? -ggx : ggx, agy = ggy < 0 ? -ggy : ggy,
+                     agz = ggz < 0 ? -ggz : ggz;
+        const double av = v < 0 ? -v : v;
+        val[k] = is_model ? v : 0.0;
+        gx[k] = is_model ? ggx : 0.0, gy[k] = is_model ? ggy : 0.0, gz[k] = is_model ? ggz : 0.0;
+        hs[k] = is_model ? h : 0.0;
+        sl[k] = is_model ? av + mag + x.rho * (agx + agy + agz) : 0.0;
+        // `far_range` claims nothing where dlow is not positive.
+        ok = ok & (!is_model | (dlow > 0));
+      }
       for (int k = 0; k < K; ++k) {
         const bvh::ChildRef r = node.child[k];
         if (r.is_empty()) continue;
-        const Vec3<double> ctr{double(c.cx[k]), double(c.cy[k]), double(c.cz[k])};
-        const double far2 = double(c.far2[k]);
-        const double dmin2 = x.box.distance2(ctr), dmax2 = x.box.max_distance2(ctr);
-        if (dmin2 * (1 - e) > far2 && dmin2 >= kr2) { // far for every point: the model
-          detail::RangeSum fv;
-          far_range(fv, x, c, rc, k, true, std::sqrt(dmin2));
-          if (!fv.ok) return false;
-          fr.value += fv.value, fr.grad += fv.grad, fr.hess += fv.hess;
+        if (model[k]) {
+          fr.value += val[k], fr.hess += hs[k];
+          fr.grad.x += gx[k], fr.grad.y += gy[k], fr.grad.z += gz[k];
           fr.mag += double(rc.magf[k]);
-          fr.slack += std::abs(fv.value) + fv.mag +
-                      x.rho * (std::abs(fv.grad.x) + std::abs(fv.grad.y) + std::abs(fv.grad.z));
-        } else if (dmax2 * (1 + e) <= far2) { // near for every point
+          fr.slack += sl[k];
+        } else if (all_near[k]) {
           if (r.is_leaf()) {
             if (fr.leaves == Frontier::capacity) return false;
             fr.leaf[fr.leaves++] = r;
@@ -911,8 +982,9 @@ template <class T, int K = 4> class FastWindingNumber {
         }
       }
     }
-    return std::isfinite(fr.value) && std::isfinite(fr.hess) && std::isfinite(fr.mag) &&
-           std::isfinite(fr.slack) && all_finite(fr.grad);
+    const auto finite = [](double v) { return v - v == 0; };
+    return ok && finite(fr.value) && finite(fr.hess) && finite(fr.mag) && finite(fr.slack) &&
+           finite(fr.grad.x) && finite(fr.grad.y) && finite(fr.grad.z);
   }
 
   /// A packet's part of `bound_batch` for the points of `fr`'s box: the near sums of `fr`'s
@@ -976,18 +1048,34 @@ template <class T, int K = 4> class FastWindingNumber {
     }
     const detail::RangeBox x(box);
     Frontier fr;
-    if (!frontier(x, fr)) return by_packets();
+    bool fits = false;
+    with_active_isa([&](auto isa) {
+      fits = detail::WindingKernels<decltype(isa)::value>::frontier(*this, x, fr);
+    });
+    if (!fits) return by_packets();
+    with_active_isa([&](auto isa) {
+      detail::WindingKernels<decltype(isa)::value>::chunk_bounds(*this, fr, x, pts, n, lo, hi);
+    });
+  }
+
+  /// The bounds of `bound_chunk` at its n points from the shared part `fr` over their box `x`:
+  /// per packet of `packet_width` points, `frontier_sums_inline`, then each point's interval.
+  /// Inlined into the kernels of instruction set I (`detail::WindingKernels`).
+  template <Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
+  chunk_bounds_inline(const Frontier& fr, const detail::RangeBox& x, const Vec3<T>* pts,
+                      std::size_t n, T* lo, T* hi) const noexcept {
+    constexpr int P = packet_width;
     const double eps = double(std::numeric_limits<T>::epsilon());
     const T inf = std::numeric_limits<T>::infinity();
     alignas(64) T far_sum[P], mag[P];
     alignas(64) double near[P], cnt[P], errn[P];
+    const auto fabs = [](double v) { return v < 0 ? -v : v; };
+    const auto finite = [](double v) { return v - v == 0; };
     for (std::size_t i = 0; i < n; i += std::size_t(P)) {
-      const int m = int(std::min(n - i, std::size_t(P)));
+      const int m = int(n - i < std::size_t(P) ? n - i : std::size_t(P));
       std::uint32_t pops = 0;
-      with_active_isa([&](auto isa) {
-        detail::WindingKernels<decltype(isa)::value>::frontier_sums(*this, fr, pts + i, m, far_sum,
-                                                                    near, cnt, mag, errn, pops);
-      });
+      frontier_sums_inline<I>(fr, pts + i, m, far_sum, near, cnt, mag, errn, pops);
       // Rounding: `operator()` sums the far fields of the point's far children in T, each
       // computed with at most 64 roundings relative to its `magf` and then added through at most
       // K + 2 + (nodes visited) sums; our far_sum adds those of the items the same way. Both are
@@ -996,25 +1084,60 @@ template <class T, int K = 4> class FastWindingNumber {
       const double steps = double(fr.nodes) + double(pops) + K + 66;
       const double mag_slack = 1 + 2 * (double(pops) * K + K) * eps; // mag[j] summed in T
       for (int j = 0; j < m; ++j) {
-        const Vec3<double> d = Vec3<double>::from(pts[i + std::size_t(j)]) - x.c;
+        const Vec3<T>& q = pts[i + std::size_t(j)];
+        const double ddx = double(q.x) - x.c.x, ddy = double(q.y) - x.c.y,
+                     ddz = double(q.z) - x.c.z;
         // The near sum: as `bound_packet`'s, plus (T = float) the float angles' own error.
-        const double e = sign_bound(near[j], cnt[j]) + errn[j] * (1 + 1e-9);
+        const double e = sign_bound_inline(near[j], cnt[j]) + errn[j] * (1 + 1e-9);
         const double alo = double(T((near[j] - e) * inv4pi));
         const double ahi = double(T((near[j] + e) * inv4pi));
-        const double model = fr.value + (fr.grad.x * d.x + fr.grad.y * d.y + fr.grad.z * d.z);
+        const double model = fr.value + (fr.grad.x * ddx + fr.grad.y * ddy + fr.grad.z * ddz);
         const double fs = double(far_sum[j]);
         const double r = 2 * steps * eps * (fr.mag + double(mag[j]) * mag_slack) +
-                         0.5 * fr.hess * dot(d, d) * (1 + 1e-9) + 1e-12 * fr.slack;
-        const double sl =
-            1e-12 * (std::abs(alo) + std::abs(ahi) + std::abs(fs) + std::abs(model) + r) + 1e-300;
+                         0.5 * fr.hess * (ddx * ddx + ddy * ddy + ddz * ddz) * (1 + 1e-9) +
+                         1e-12 * fr.slack;
+        const double sl = 1e-12 * (fabs(alo) + fabs(ahi) + fabs(fs) + fabs(model) + r) + 1e-300;
         const double l = alo + fs + model - r - sl, h = ahi + fs + model + r + sl;
-        const bool ok = std::isfinite(l) && std::isfinite(h);
+        const bool ok = finite(l) & finite(h);
         // `operator()` returns T(a + far) with a in [alo, ahi], far in [fs + model - r, ...]:
         // its rounding to T is non-decreasing, so T rounded outwards bounds it.
-        lo[i + std::size_t(j)] = ok ? round_down(l) : -inf;
-        hi[i + std::size_t(j)] = ok ? round_up(h) : inf;
+        lo[i + std::size_t(j)] = ok ? round_down_inline(l) : -inf;
+        hi[i + std::size_t(j)] = ok ? round_up_inline(h) : inf;
       }
     }
+  }
+
+  /// `sign_bound`, branch free (it inlines into the kernels).
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE static double sign_bound_inline(double near,
+                                                                            double cnt) noexcept {
+    constexpr double u = 1.1102230246251565e-16, two_pi = 6.283185307179586;
+    const double e = cnt * 2 * detail::atan2_bounded_error + 2 * (2 * cnt * u * two_pi * cnt);
+    return e * (1 + 1e-9) + 4 * u * (near < 0 ? -near : near) + 1e-300;
+  }
+
+  /// The largest T <= v (v finite), as `round_down`, branch free: for float, T(v) or the float
+  /// below it (one step down in the ordered bit patterns; -0 steps to the negative
+  /// denormal_min, +inf to the largest finite float).
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE static T round_down_inline(double v) noexcept {
+    if constexpr (std::is_same_v<T, float>) {
+      const float f = float(v);
+      std::int32_t b;
+      std::memcpy(&b, &f, sizeof b);
+      // |b| - 1 with the sign bit kept, for b != ±0; ±0 -> 0x80000001 (-denormal_min).
+      const std::int32_t mag = b & 0x7fffffff;
+      const std::int32_t down = mag == 0 ? std::int32_t(0x80000001) : b > 0 ? b - 1 : b + 1;
+      const std::int32_t pick = double(f) > v ? down : b;
+      float g;
+      std::memcpy(&g, &pick, sizeof g);
+      return g;
+    } else {
+      return T(v); // exact for double
+    }
+  }
+
+  /// The smallest T >= v (v finite), as `round_up`, branch free (`round_down_inline` of -v).
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE static T round_up_inline(double v) noexcept {
+    return -round_down_inline(-v);
   }
 
  public:
