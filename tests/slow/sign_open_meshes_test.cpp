@@ -82,7 +82,7 @@ INSTANTIATE_TEST_SUITE_P(Shared, FastWindingOnOpenMeshes,
                          });
 
 /// Packets of fast winding numbers are the per-point values bit for bit on a real open mesh, at
-/// the samples of a 192³ grid's tiles next to the surface (in the 4x2x2 groups a band gives them)
+/// the samples of a 192³ grid's tiles next to the surface (in 4x2x2 groups, two to a packet)
 /// and at random points.
 TEST(FastWindingPacketsOnOpenMeshes, EqualThePerPointValuesOnTheBunny) {
   EBGEOM_REQUIRE_MESH("stanford-bunny.obj");

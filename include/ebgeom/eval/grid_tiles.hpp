@@ -187,7 +187,7 @@ void prove_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
 
 /// With a batch sign (`has_batch_sign_v`): `sg[l] = sign_at(sample l)` for the samples of the tile
 /// at `base` (local indices, stride 8; `size` samples per axis) whose sign is `unknown` and that
-/// `want(l)` selects, in one `signs_at` call over groups of 4x2x2 neighbours (packets of nearby
+/// `want(l)` selects, in one `signs_at` call over groups of 4x4x2 neighbours (packets of nearby
 /// samples). Without one, nothing.
 template <class S, class Want>
 void batch_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,

@@ -289,7 +289,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
       for (std::size_t l = 0; l < pts.size(); ++l) out[l] = with_sign(std::abs(out[l]), pts[l]);
       return;
     }
-    // Samples off the surface, in groups of 4x2x2 neighbours (x fastest).
+    // Samples off the surface, in groups of 4x4x2 neighbours (x fastest).
     std::vector<std::size_t> idx;
     idx.reserve(pts.size());
     detail::for_each_in_sign_groups(dims, [&](std::size_t x, std::size_t y, std::size_t z) {

@@ -72,15 +72,15 @@ template <class S> inline constexpr bool has_batch_sign_v = detail::has_batch_si
 
 namespace detail {
 /// Calls `f(x, y, z)` for every sample of a block of `dims[0] x dims[1] x dims[2]` lattice
-/// samples, in groups of 4x2x2 neighbours (x fastest inside a group and between groups): the
-/// order in which a batch sign's caller lists samples, so that the packets of `signs_at` hold
-/// nearby points.
+/// samples, in groups of 4x4x2 neighbours (x fastest inside a group and between groups): the
+/// order in which a batch sign's caller lists samples, so that the packets of `signs_at` (32
+/// points) hold nearby points.
 template <class F> void for_each_in_sign_groups(const std::array<std::size_t, 3>& dims, F&& f) {
   for (std::size_t gz = 0; gz < dims[2]; gz += 2)
-    for (std::size_t gy = 0; gy < dims[1]; gy += 2)
+    for (std::size_t gy = 0; gy < dims[1]; gy += 4)
       for (std::size_t gx = 0; gx < dims[0]; gx += 4)
         for (std::size_t z = gz; z < std::min(dims[2], gz + 2); ++z)
-          for (std::size_t y = gy; y < std::min(dims[1], gy + 2); ++y)
+          for (std::size_t y = gy; y < std::min(dims[1], gy + 4); ++y)
             for (std::size_t x = gx; x < std::min(dims[0], gx + 4); ++x) f(x, y, z);
 }
 } // namespace detail

@@ -585,7 +585,7 @@ template <class T, int K = 4> class FastWindingNumber {
   }
 
   /// Points per `eval_packet` call: one traversal serves up to this many points (32 measured
-  /// faster than 16 or 8 on the bunny's band, whose packets are two 4x2x2 groups of samples).
+  /// faster than 16 or 8 on the bunny's band, whose packets are 4x4x2 groups of samples).
   static constexpr int packet_width = 32;
   static_assert(packet_width % 8 == 0 && packet_width <= 32, "one bit per point in a mask");
 
@@ -593,8 +593,8 @@ template <class T, int K = 4> class FastWindingNumber {
   /// with one traversal of the tree for all of them: a node is opened while any point needs it,
   /// and each point adds, in the order `operator()` does, exactly the far fields and leaf sums its
   /// own traversal adds (the same far-field test, the same child order, the same arithmetic;
-  /// both without contraction into fused multiply-adds). Fast for nearby points (a few 4x2x2
-  /// groups of grid samples), which open nearly the same nodes. Thread-safe.
+  /// both without contraction into fused multiply-adds). Fast for nearby points (a 4x4x2
+  /// group of grid samples), which open nearly the same nodes. Thread-safe.
   EBGEOM_WINDING_KERNEL void eval_packet(const Vec3<T>* pts, int n, T* out) const noexcept {
     constexpr int P = packet_width;
     if (n <= 0) return;

@@ -163,7 +163,7 @@ template <class Fn> void for_each_isa(Fn&& fn) {
 }
 
 /// Points to evaluate in packets: random points around the mesh, and the samples of a fine
-/// lattice next to the surface, in 4x2x2 groups (as grid tiles give them), some on vertices.
+/// lattice next to the surface, in 4x2x2 groups (two to a packet), some on vertices.
 template <class T>
 std::vector<Vec3<T>> packet_points(const TriangleMesh<T>& m, std::uint64_t seed) {
   std::vector<Vec3<T>> pts = test::random_points(m.bounds().grown(T(0.4)), 1600, seed);
@@ -458,7 +458,7 @@ void expect_batch_bounds_hold(const FastWindingNumber<T, K>& fw, const std::vect
   }
 }
 
-/// Batches as grid tiles give them (8³ lattice blocks next to the surface, in 4x2x2 groups),
+/// Batches as grid tiles give them (8³ lattice blocks next to the surface, in 4x4x2 groups),
 /// 4³ blocks around points next to w = 1/2, random clouds over the whole box (one chunk of 512
 /// and the rest), a batch with a NaN point and a batch of one point repeated.
 template <class T, int K> void expect_batches_hold(const TriangleMesh<T>& m, int leaf) {
