@@ -463,6 +463,11 @@ namespace detail {
                                                                     F& fr) noexcept {              \
     return w.template frontier_inline<I>(x, fr);                                                   \
   }                                                                                                \
+  template <class W, class X>                                                                      \
+  TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static RangeSum node_range(                         \
+      const W& w, std::uint32_t ni, const X& x) noexcept {                                         \
+    return w.template node_range_inline<I>(ni, x);                                                 \
+  }                                                                                                \
   template <class W, class F, class X, class T>                                                    \
   TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static void chunk_bounds(                           \
       const W& w, const F& fr, const X& x, const Vec3<T>* pts, std::size_t n, T* lo,               \
@@ -1168,7 +1173,9 @@ template <class T, int K = 4> class FastWindingNumber {
     if (root.is_leaf())
       leaf_range(s, x, root.index, root.count);
     else if (root.is_inner())
-      s = node_range(root.index, x);
+      with_active_isa([&](auto isa) {
+        s = detail::WindingKernels<decltype(isa)::value>::node_range(*this, root.index, x);
+      });
     return detail::finish_range(s, x, double(std::numeric_limits<T>::epsilon()));
   }
 
@@ -1460,96 +1467,127 @@ template <class T, int K = 4> class FastWindingNumber {
   /// Hessian bound 6 |N| / r⁴ + 24 √3 |M| / r⁵ (|∂ᵏ(1/r)| <= k! / r^(k+1), `add_triangle_range`;
   /// a contraction with M is at most its nuclear norm <= √3 |M|, the Frobenius norm); for some
   /// points only (`whole` false) an interval capped by |term| <= |N| / r² + (|tr M| + 3 |M|) / r³.
-  void far_range(detail::RangeSum& fv, const detail::RangeBox& x, const WindingNode<T, K>& c,
-                 const RangeNode& rc, int k, bool whole, double dmin_raw) const noexcept {
+  /// Plain scalar arithmetic, so that it inlines into the kernels (`node_range_inline`).
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
+  far_range(detail::RangeSum& fv, const detail::RangeBox& x, const WindingNode<T, K>& c,
+            const RangeNode& rc, int k, bool whole, double dmin_raw) const noexcept {
     constexpr double i4p = 0.07957747154594767;
-    const Vec3<double> ctr{double(c.cx[k]), double(c.cy[k]), double(c.cz[k])};
+    const auto fabs = [](double v) { return v < 0 ? -v : v; };
+    const double cx = double(c.cx[k]), cy = double(c.cy[k]), cz = double(c.cz[k]);
     const double dmin = dmin_raw * (1 - 1e-12);
-    const double dlow = std::max(dmin, double(rc.dfar[k]));
+    const double dfar = double(rc.dfar[k]);
+    const double dlow = dmin > dfar ? dmin : dfar;
     const double nrm = double(rc.nrm[k]), fro = double(rc.fro[k]);
     const double tr = double(c.m[0][k]) + double(c.m[4][k]) + double(c.m[8][k]);
     if (!(dlow > 0)) {
       fv.ok = false;
       return;
     }
-    // Products with reciprocals instead of quotients: a few more roundings, far inside the
-    // relative 1e-12 by which dmin and dlow are shrunk.
     const double il = 1 / dlow, il2 = il * il, il3 = il2 * il;
-    // Intermediate magnitudes of the far-field formula: |N|/r², and Σ |M_ij| <= 3 |M|_F.
-    fv.mag = (nrm * il2 + (std::abs(tr) + 9 * fro) * il3) * i4p;
+    fv.mag = (nrm * il2 + (fabs(tr) + 9 * fro) * il3) * i4p;
     fv.terms = 2; // the term and its share of the per-node sum
-    detail::RangeSum m;
+    double value = 0, gx = 0, gy = 0, gz = 0, g1 = 0, hs = 0;
     if (dmin > 0) {
-      const Vec3<double> nn{double(c.nx[k]), double(c.ny[k]), double(c.nz[k])};
-      double mm[3][3];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) mm[i][j] = double(c.m[3 * i + j][k]);
-      const Vec3<double> r = ctr - x.c;
-      const double r2 = dot(r, r), ir = 1 / std::sqrt(r2), ir2 = ir * ir;
+      const double nx = double(c.nx[k]), ny = double(c.ny[k]), nz = double(c.nz[k]);
+      const double m0 = double(c.m[0][k]), m1 = double(c.m[1][k]), m2 = double(c.m[2][k]);
+      const double m3 = double(c.m[3][k]), m4 = double(c.m[4][k]), m5 = double(c.m[5][k]);
+      const double m6 = double(c.m[6][k]), m7 = double(c.m[7][k]), m8 = double(c.m[8][k]);
+      const double rx = cx - x.c.x, ry = cy - x.c.y, rz = cz - x.c.z;
+      const double r2 = rx * rx + ry * ry + rz * rz;
+      const double ir = 1 / detail::winding_sqrt(r2), ir2 = ir * ir;
       const double ir3 = ir2 * ir, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
-      Vec3<double> mr{0, 0, 0}, mtr{0, 0, 0};
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          mr[i] += mm[i][j] * r[j];
-          mtr[j] += mm[i][j] * r[i];
-        }
-      const double g = tr * r2 - 3 * dot(r, mr);
-      m.value = (dot(nn, r) * ir3 + g * ir5) * i4p;
+      const double mrx = m0 * rx + m1 * ry + m2 * rz, mry = m3 * rx + m4 * ry + m5 * rz,
+                   mrz = m6 * rx + m7 * ry + m8 * rz;
+      const double mtx = m0 * rx + m3 * ry + m6 * rz, mty = m1 * rx + m4 * ry + m7 * rz,
+                   mtz = m2 * rx + m5 * ry + m8 * rz;
+      const double g = tr * r2 - 3 * (rx * mrx + ry * mry + rz * mrz);
+      const double nr = nx * rx + ny * ry + nz * rz;
+      value = (nr * ir3 + g * ir5) * i4p;
       // ∇_r of the term; ∇_p = -∇_r.
-      const Vec3<double> dg = r * (2 * tr) - (mr + mtr) * 3.0;
-      const Vec3<double> gr = nn * ir3 - r * (3 * dot(nn, r) * ir5) + dg * ir5 - r * (5 * g * ir7);
-      m.grad = gr * -i4p;
+      const double a1 = 3 * nr * ir5, a2 = 5 * g * ir7;
+      const double grx = nx * ir3 - rx * a1 + (rx * (2 * tr) - (mrx + mtx) * 3.0) * ir5 - rx * a2;
+      const double gry = ny * ir3 - ry * a1 + (ry * (2 * tr) - (mry + mty) * 3.0) * ir5 - ry * a2;
+      const double grz = nz * ir3 - rz * a1 + (rz * (2 * tr) - (mrz + mtz) * 3.0) * ir5 - rz * a2;
+      gx = grx * -i4p, gy = gry * -i4p, gz = grz * -i4p;
       const double id = 1 / dmin, id3 = id * id * id, id4 = id3 * id;
-      m.grad1 = (2 * nrm * id3 + 10.4 * fro * id4) * i4p;
-      m.hess = (6 * nrm * id4 + 41.6 * fro * (id4 * id)) * i4p;
+      g1 = (2 * nrm * id3 + 10.4 * fro * id4) * i4p;
+      hs = (6 * nrm * id4 + 41.6 * fro * (id4 * id)) * i4p;
+      if (whole) {
+        fv.value = value, fv.grad = {gx, gy, gz}, fv.grad1 = g1, fv.hess = hs;
+        return;
+      }
     }
-    if (whole && dmin > 0) {
-      m.mag = fv.mag, m.terms = fv.terms;
-      fv = m;
-      return;
-    }
-    const double cap = (nrm * il2 + (std::abs(tr) + 3 * fro) * il3) * i4p * (1 + 1e-12);
+    const double cap = (nrm * il2 + (fabs(tr) + 3 * fro) * il3) * i4p * (1 + 1e-12);
     double lo = -cap, hi = cap;
-    if (dmin > 0) {
-      double mlo, mhi;
-      m.interval(x, mlo, mhi);
-      lo = std::max(lo, mlo), hi = std::min(hi, mhi);
+    if (dmin > 0) { // `RangeSum::interval` of the model alone
+      const double lin = fabs(gx) * x.e.x + fabs(gy) * x.e.y + fabs(gz) * x.e.z;
+      const double w1 = x.rho * g1, w2 = lin + 0.5 * x.rho * x.rho * hs;
+      const double w = (w2 < w1 ? w2 : w1) * (1 + 1e-9) + 1e-12 * (fabs(value) + x.rho * g1);
+      const double mlo = value + 0.0 - w, mhi = value + 0.0 + w;
+      lo = lo > mlo ? lo : mlo, hi = hi < mhi ? hi : mhi;
     }
     fv.ilo = lo, fv.ihi = hi;
   }
 
-  /// The interval of node `ni`'s children over the box (see `range_over`).
-  detail::RangeSum node_range(std::uint32_t ni, const detail::RangeBox& x) const {
-
+  /// The interval of node `ni`'s children over the box (see `range_over`): per child, a cluster
+  /// far from every point of the box adds its far field's model (`far_range` with `whole`), one
+  /// near every point its leaf's or subtree's interval, one far for some points only the hull of
+  /// both. The children's box distances and tests in a loop over the children that vectorises;
+  /// then, in order, each child's terms (`far_range` where a point may take it as far),
+  /// the subtrees through the kernel of instruction set I again
+  /// (`detail::WindingKernels::node_range`).
+  template <Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE detail::RangeSum
+  node_range_inline(std::uint32_t ni, const detail::RangeBox& x) const noexcept {
     // A query's squared distance r2 is within a relative 8 eps of the exact one (three rounded
     // squares, two sums, the rounded differences): classify only with that margin.
     const double e = 16 * double(std::numeric_limits<T>::epsilon());
-    detail::RangeSum s;
+    const double blx = x.box.lo.x, bly = x.box.lo.y, blz = x.box.lo.z;
+    const double bhx = x.box.hi.x, bhy = x.box.hi.y, bhz = x.box.hi.z;
     const WindingNode<T, K>& c = nodes_[ni];
     const RangeNode& rc = range_nodes_[ni];
     const bvh::WideNode<T, K>& node = bvh_.nodes[ni];
+    alignas(64) double dmin2s[K];
+    std::uint8_t all_far[K], all_near[K];
+    for (int k = 0; k < K; ++k) { // branch-free over the children: vectorisable
+      const double cx = double(c.cx[k]), cy = double(c.cy[k]), cz = double(c.cz[k]);
+      const double far2 = double(c.far2[k]);
+      const double ax = blx - cx > cx - bhx ? blx - cx : cx - bhx;
+      const double ay = bly - cy > cy - bhy ? bly - cy : cy - bhy;
+      const double az = blz - cz > cz - bhz ? blz - cz : cz - bhz;
+      const double mx = ax > 0 ? ax : 0.0, my = ay > 0 ? ay : 0.0, mz = az > 0 ? az : 0.0;
+      const double dmin2 = mx * mx + my * my + mz * mz;
+      const double fx = cx - blx > bhx - cx ? cx - blx : bhx - cx;
+      const double fy = cy - bly > bhy - cy ? cy - bly : bhy - cy;
+      const double fz = cz - blz > bhz - cz ? cz - blz : bhz - cz;
+      const double dmax2 = fx * fx + fy * fy + fz * fz;
+      dmin2s[k] = dmin2;
+      all_far[k] = dmin2 * (1 - e) > far2;
+      all_near[k] = dmax2 * (1 + e) <= far2;
+    }
+    detail::RangeSum s;
+    const auto add = [&s](const detail::RangeSum& o) { // `RangeSum::add`, inlined here
+      s.value += o.value, s.grad.x += o.grad.x, s.grad.y += o.grad.y, s.grad.z += o.grad.z;
+      s.grad1 += o.grad1, s.hess += o.hess, s.ilo += o.ilo, s.ihi += o.ihi;
+      s.mag += o.mag, s.cond += o.cond, s.terms += o.terms, s.ok = s.ok && o.ok;
+    };
     for (int k = 0; k < K && s.ok; ++k) {
       const bvh::ChildRef r = node.child[k];
       if (r.is_empty()) continue;
-      const Vec3<double> ctr{double(c.cx[k]), double(c.cy[k]), double(c.cz[k])};
-      const double far2 = double(c.far2[k]);
-      const double dmin2 = x.box.distance2(ctr), dmax2 = x.box.max_distance2(ctr);
-      const bool all_far = dmin2 * (1 - e) > far2;
-      const bool all_near = dmax2 * (1 + e) <= far2;
       detail::RangeSum fv, nv;
-      if (!all_near) far_range(fv, x, c, rc, k, all_far, std::sqrt(dmin2));
-      if (!all_far) {
+      if (!all_near[k]) far_range(fv, x, c, rc, k, all_far[k], detail::winding_sqrt(dmin2s[k]));
+      if (!all_far[k]) {
         if (r.is_leaf())
           leaf_range(nv, x, r.index, r.count);
         else if (r.is_inner())
-          nv = node_range(r.index, x);
+          nv = detail::WindingKernels<I>::node_range(*this, r.index, x);
       }
-      if (all_far)
-        s.add(fv);
-      else if (all_near)
-        s.add(nv);
+      if (all_far[k])
+        add(fv);
+      else if (all_near[k])
+        add(nv);
       else
-        s.add(detail::RangeSum::hull(x, fv, nv));
+        add(detail::RangeSum::hull(x, fv, nv));
     }
     return s;
   }
