@@ -33,7 +33,10 @@ inline void evaluate_serial(const S& sdf, Span<const Vec3<sdf_scalar_t<S>>> poin
 
 /// Evaluates `sdf` at every point: `out[i] = S(points[i])` (S < 0 inside, > 0 outside).
 /// Threads over batches of 256 points (`exec.threads`, 0 = all cores); results do not depend on the
-/// thread count. `sdf` must be safe to call concurrently (every ebgeom SDF is).
+/// thread count. An SDF whose batch `eval` sorts its points in space order (`has_ordered_batch_v`:
+/// `MeshSdf`) gets instead one span per thread, split in about four for load balance (at least
+/// 4096 points each; the whole input on one thread), so that it finds locality among many
+/// points. `sdf` must be safe to call concurrently (every ebgeom SDF is).
 /// Errors: `invalid_argument` when `out.size() != points.size()`. O(N * cost of one query).
 template <class S>
 Result<Ok> evaluate(const S& sdf, Span<const Vec3<sdf_scalar_t<S>>> points,
@@ -42,7 +45,12 @@ Result<Ok> evaluate(const S& sdf, Span<const Vec3<sdf_scalar_t<S>>> points,
   if (out.size() != points.size())
     return make_error(ErrorCode::invalid_argument, "evaluate: ", points.size(), " points but ",
                       out.size(), " output values");
-  constexpr std::size_t batch = 256;
+  std::size_t batch = 256;
+  if constexpr (has_ordered_batch_v<S>) {
+    const std::size_t t = std::size_t(resolve_threads(exec));
+    batch = t <= 1 ? std::max<std::size_t>(points.size(), 1)
+                   : std::max<std::size_t>(4096, (points.size() + 4 * t - 1) / (4 * t));
+  }
   parallel_for(
       0, points.size(), batch,
       [&](std::size_t b, std::size_t e) {

@@ -11,7 +11,9 @@
 /// `is_sdf_v<S>` checks it (C++17 detection); with C++20 concepts, `ebgeom::Sdf` too.
 ///
 /// Optional members, each detected here and nowhere else, let the evaluators take faster paths:
-///  - batch `void eval(Span<const Vec3<T>>, Span<T>) const` (`has_batch_eval_v`),
+///  - batch `void eval(Span<const Vec3<T>>, Span<T>) const` (`has_batch_eval_v`), with
+///    `static constexpr bool batch_in_space_order = true` when it orders the points itself
+///    (`has_ordered_batch_v`),
 ///  - `T bounded(const Vec3<T>&, T max_abs) const` (`has_bounded_query_v`),
 ///  - tile `void eval_lattice(Span<const Vec3<T>>, const std::array<std::size_t, 3>&, Span<T>)
 ///    const` (`has_lattice_eval_v`),
@@ -91,6 +93,11 @@ struct has_batch_eval<S, std::void_t<decltype(std::declval<const S&>().eval(
                              std::declval<Span<const Vec3<typename S::scalar_type>>>(),
                              std::declval<Span<typename S::scalar_type>>()))>> : std::true_type {};
 
+template <class S, class = void> struct has_ordered_batch : std::false_type {};
+template <class S>
+struct has_ordered_batch<S, std::void_t<decltype(S::batch_in_space_order)>>
+    : std::bool_constant<has_batch_eval<S>::value&& bool(S::batch_in_space_order)> {};
+
 template <class S, class = void> struct has_bounded_query : std::false_type {};
 template <class S>
 struct has_bounded_query<S, std::void_t<decltype(std::declval<const S&>().bounded(
@@ -123,6 +130,12 @@ struct has_analytic_gradient<
 /// `AnySdf<T>` and `CachedUnion` do). Batch evaluators then call it once per batch instead of
 /// `S::operator()` once per point.
 template <class S> inline constexpr bool has_batch_eval_v = detail::has_batch_eval<S>::value;
+
+/// True when `S` has a batch `eval` that visits the points in its own space order
+/// (`static constexpr bool batch_in_space_order = true`, as `MeshSdf`): locality across queries
+/// then grows with the batch, so `evaluate` hands it a few large spans per thread instead of
+/// batches of 256 points.
+template <class S> inline constexpr bool has_ordered_batch_v = detail::has_ordered_batch<S>::value;
 
 /// True when `S` (an `exact` SDF) has a bounded query
 /// `T bounded(const Vec3<T>& p, T max_abs) const noexcept` that returns exactly `S(p)` (bit for

@@ -4,10 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
+#include "ebgeom/eval/evaluate.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "ebgeom/sdf/brute_force_mesh_sdf.hpp"
 #include "test_support.hpp"
@@ -137,6 +140,110 @@ TYPED_TEST(MeshSdfTest, SeededSearchEqualsBruteForceAtCellCentresFarAwayAndOffse
           same_bits(sdf.closest_within(p, T(2) * std::abs(b.distance) + T(1)).distance, b.distance))
           << p;
     }
+  }
+}
+
+namespace {
+/// `sdf.eval` on `pts` against one `sdf(p)` per point, bit for bit (NaN where the query is NaN).
+template <class S, class T>
+void expect_batch_equals_single(const S& sdf, const std::vector<Vec3<T>>& pts, const char* what) {
+  std::vector<T> out(pts.size(), T(-7));
+  sdf.eval(Span<const Vec3<T>>(pts), Span<T>(out));
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    ASSERT_TRUE(same_bits(out[i], sdf(pts[i])))
+        << what << ": point " << i << " of " << pts.size() << " " << pts[i] << " batch " << out[i]
+        << " single " << sdf(pts[i]);
+}
+} // namespace
+
+// The batch query visits the points in Morton order, each search seeded by the previous point's
+// nearest triangle: every value equals the single query's, on scattered, clustered and repeated
+// points (where the seed is the winner itself, at distance 0 on vertices and edges), with NaN and
+// infinite coordinates mixed in, below and above the size where it starts sorting, in any input
+// order; and the single queries equal the brute force.
+TYPED_TEST(MeshSdfTest, BatchEvalEqualsSingleQueriesBitForBit) {
+  using T = TypeParam;
+  using S = MeshSdf<T>;
+  static_assert(has_batch_eval_v<S> && has_ordered_batch_v<S>);
+  for (const PolygonSoup<T>& soup : {torus<T>(), make_cube<T>(T(1)).value()}) {
+    const auto sdf = S::build(soup).value();
+    const auto ref = BruteForceMeshSdf<T>::build(soup).value();
+    const std::vector<Vec3<T>> scattered = probes(ref.mesh(), 3000);
+    for (std::size_t i = 0; i < scattered.size(); i += 7)
+      ASSERT_TRUE(same_bits(sdf(scattered[i]), ref(scattered[i]))) << scattered[i];
+    expect_batch_equals_single(sdf, scattered, "scattered");
+
+    std::vector<Vec3<T>> clustered;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const Aabb<T> box = sdf.bounds();
+    for (int c = 0; c < 6; ++c) {
+      const Vec3<T> centre = box.lo + box.extent() * T(0.2 * c);
+      for (int i = 0; i < 400; ++i)
+        clustered.push_back(centre + Vec3<T>{T(u(rng)), T(u(rng)), T(u(rng))} * T(1e-3));
+    }
+    expect_batch_equals_single(sdf, clustered, "clustered");
+
+    std::vector<Vec3<T>> repeated;
+    const TriangleMesh<T>& m = ref.mesh();
+    for (std::size_t t = 0; t < m.triangle_count(); t += 5) // vertices, edges: exact ties
+      for (int k = 0; k < 40; ++k)
+        repeated.push_back(k % 2 ? m.corner(t, 0) : (m.corner(t, 0) + m.corner(t, 1)) * T(0.5));
+    for (int k = 0; k < 500; ++k) repeated.push_back(box.center());
+    expect_batch_equals_single(sdf, repeated, "repeated");
+
+    std::vector<Vec3<T>> odd = scattered;
+    const T inf = std::numeric_limits<T>::infinity(), nan = std::numeric_limits<T>::quiet_NaN();
+    for (std::size_t i = 0; i < odd.size(); i += 13) odd[i].y = i % 2 ? nan : -inf;
+    odd.push_back({inf, inf, inf});
+    expect_batch_equals_single(sdf, odd, "NaN and inf");
+
+    std::vector<Vec3<T>> reversed(scattered.rbegin(), scattered.rend());
+    expect_batch_equals_single(sdf, reversed, "reversed");
+    for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(2), S::batch_order_min - 1,
+                          S::batch_order_min, S::batch_order_min + 1})
+      expect_batch_equals_single(
+          sdf, std::vector<Vec3<T>>(scattered.begin(), scattered.begin() + std::ptrdiff_t(n)),
+          "short");
+    // Only the first min(points, values) are written.
+    std::vector<T> out(10, T(-7));
+    sdf.eval(Span<const Vec3<T>>(scattered), Span<T>(out).first(5));
+    for (std::size_t i = 0; i < 10; ++i)
+      EXPECT_TRUE(same_bits(out[i], i < 5 ? sdf(scattered[i]) : T(-7))) << i;
+  }
+}
+
+// The tile query takes its bounds from a lattice's corner samples: on points that are no lattice
+// (a tile's samples shuffled) it still returns the single queries' values.
+TYPED_TEST(MeshSdfTest, LatticeEvalOfPointsThatAreNoLatticeEqualsSingleQueries) {
+  using T = TypeParam;
+  const auto sdf = MeshSdf<T>::build(torus<T>()).value();
+  const std::vector<Vec3<T>> pts = test::random_points(sdf.bounds().grown(T(0.3)), 51200, 31);
+  std::vector<T> out(512);
+  for (const std::array<std::size_t, 3> dims :
+       {std::array<std::size_t, 3>{{8, 8, 8}}, std::array<std::size_t, 3>{{512, 1, 1}}})
+    for (std::size_t s = 0; s < pts.size(); s += 512) {
+      sdf.eval_lattice(Span<const Vec3<T>>(pts).subspan(s, 512), dims, Span<T>(out));
+      for (std::size_t i = 0; i < 512; ++i)
+        ASSERT_TRUE(same_bits(out[i], sdf(pts[s + i]))) << dims[0] << " point " << s + i;
+    }
+}
+
+// `evaluate` hands MeshSdf's batch query large spans: the same bits whatever the thread count.
+TYPED_TEST(MeshSdfTest, EvaluateDoesNotDependOnTheThreadCount) {
+  using T = TypeParam;
+  const auto sdf = MeshSdf<T>::build(torus<T>()).value();
+  const std::vector<Vec3<T>> pts = test::random_points(sdf.bounds().grown(T(0.5)), 20000, 29);
+  std::vector<T> single(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) single[i] = sdf(pts[i]);
+  for (int threads : {1, 2, 3, 7}) {
+    ExecOptions ex;
+    ex.threads = threads;
+    ex.serial_threshold = 0;
+    std::vector<T> out(pts.size(), T(-7));
+    ASSERT_TRUE(evaluate(sdf, Span<const Vec3<T>>(pts), Span<T>(out), ex));
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      ASSERT_TRUE(same_bits(out[i], single[i])) << threads << " threads, point " << i;
   }
 }
 
