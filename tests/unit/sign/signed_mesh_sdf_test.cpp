@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
+#include "ebgeom/eval/evaluate.hpp"
 #include "ebgeom/mesh/generate.hpp"
 #include "sign_support.hpp"
 #include "test_support.hpp"
@@ -111,6 +113,36 @@ TYPED_TEST(SignedMeshSdfTest, BatchSignsAreThePointSignsInEveryMode) {
       s.signs_at(Span<const Vec3<T>>(pts), Span<Sign>(got));
       for (std::size_t i = 0; i < pts.size(); ++i)
         ASSERT_EQ(got[i], s.sign_at(pts[i])) << to_string(m) << " " << pts[i];
+    }
+  }
+}
+
+// The batch query (MeshSdf's Morton-ordered batch with the pseudonormal sign, one point at a time
+// otherwise) gives every mode's single values bit for bit, through `evaluate` on 1 and 3 threads.
+TYPED_TEST(SignedMeshSdfTest, BatchEvalIsThePointValuesInEveryMode) {
+  using T = TypeParam;
+  static_assert(has_batch_eval_v<SignedMeshSdf<T>> && has_ordered_batch_v<SignedMeshSdf<T>>);
+  const PolygonSoup<T> ball = make_icosphere<T>(3).value();
+  for (const PolygonSoup<T>& soup : {ball, test::remove_cap(ball, T(0.3))}) {
+    std::vector<Vec3<T>> pts =
+        test::random_points(make_triangle_mesh(soup).value().bounds().grown(T(0.5)), 3000, 43);
+    for (std::size_t v = 0; v < soup.vertices.size(); v += 3) pts.push_back(soup.vertices[v]);
+    pts.push_back({std::numeric_limits<T>::quiet_NaN(), T(0), T(0)});
+    for (SignMode m : all_modes) {
+      const auto s = with_mode(soup, m);
+      for (int threads : {1, 3}) {
+        ExecOptions ex;
+        ex.threads = threads;
+        ex.serial_threshold = 0;
+        std::vector<T> got(pts.size(), T(-7));
+        ASSERT_TRUE(evaluate(s, Span<const Vec3<T>>(pts), Span<T>(got), ex));
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+          const T want = s(pts[i]);
+          ASSERT_TRUE(std::memcmp(&got[i], &want, sizeof(T)) == 0)
+              << to_string(m) << " " << threads << " threads " << pts[i] << " " << got[i] << " "
+              << want;
+        }
+      }
     }
   }
 }
