@@ -909,15 +909,8 @@ template <class T, int K = 4> class FastWindingNumber {
       for (int k = 0; k < K; ++k) { // branch-free over the children: vectorisable
         const double cx = double(c.cx[k]), cy = double(c.cy[k]), cz = double(c.cz[k]);
         const double far2 = double(c.far2[k]);
-        const double ax = blx - cx > cx - bhx ? blx - cx : cx - bhx;
-        const double ay = bly - cy > cy - bhy ? bly - cy : cy - bhy;
-        const double az = blz - cz > cz - bhz ? blz - cz : cz - bhz;
-        const double mx = ax > 0 ? ax : 0.0, my = ay > 0 ? ay : 0.0, mz = az > 0 ? az : 0.0;
-        const double dmin2 = mx * mx + my * my + mz * mz;
-        const double fx = cx - blx > bhx - cx ? cx - blx : bhx - cx;
-        const double fy = cy - bly > bhy - cy ? cy - bly : bhy - cy;
-        const double fz = cz - blz > bhz - cz ? cz - blz : bhz - cz;
-        const double dmax2 = fx * fx + fy * fy + fz * fz;
+        double dmin2, dmax2;
+        box_dist2_range(blx, bly, blz, bhx, bhy, bhz, cx, cy, cz, dmin2, dmax2);
         // far for every point (and 2 box radii away): the model; empty slots have far2 = inf.
         const bool is_model = (dmin2 * (1 - e) > far2) & (dmin2 >= kr2);
         model[k] = is_model;
@@ -1110,6 +1103,23 @@ template <class T, int K = 4> class FastWindingNumber {
         hi[i + std::size_t(j)] = ok ? round_up_inline(h) : inf;
       }
     }
+  }
+
+  /// The squared distances from the point (cx, cy, cz) to the nearest and the farthest points of
+  /// the box [bl, bh] (per axis, branch free: it inlines into the kernels' loops over a node's
+  /// children, which vectorise).
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE static void
+  box_dist2_range(double blx, double bly, double blz, double bhx, double bhy, double bhz, double cx,
+                  double cy, double cz, double& dmin2, double& dmax2) noexcept {
+    const double ax = blx - cx > cx - bhx ? blx - cx : cx - bhx;
+    const double ay = bly - cy > cy - bhy ? bly - cy : cy - bhy;
+    const double az = blz - cz > cz - bhz ? blz - cz : cz - bhz;
+    const double mx = ax > 0 ? ax : 0.0, my = ay > 0 ? ay : 0.0, mz = az > 0 ? az : 0.0;
+    dmin2 = mx * mx + my * my + mz * mz;
+    const double fx = cx - blx > bhx - cx ? cx - blx : bhx - cx;
+    const double fy = cy - bly > bhy - cy ? cy - bly : bhy - cy;
+    const double fz = cz - blz > bhz - cz ? cz - blz : bhz - cz;
+    dmax2 = fx * fx + fy * fy + fz * fz;
   }
 
   /// `sign_bound`, branch free (it inlines into the kernels).
@@ -1552,15 +1562,8 @@ template <class T, int K = 4> class FastWindingNumber {
     for (int k = 0; k < K; ++k) { // branch-free over the children: vectorisable
       const double cx = double(c.cx[k]), cy = double(c.cy[k]), cz = double(c.cz[k]);
       const double far2 = double(c.far2[k]);
-      const double ax = blx - cx > cx - bhx ? blx - cx : cx - bhx;
-      const double ay = bly - cy > cy - bhy ? bly - cy : cy - bhy;
-      const double az = blz - cz > cz - bhz ? blz - cz : cz - bhz;
-      const double mx = ax > 0 ? ax : 0.0, my = ay > 0 ? ay : 0.0, mz = az > 0 ? az : 0.0;
-      const double dmin2 = mx * mx + my * my + mz * mz;
-      const double fx = cx - blx > bhx - cx ? cx - blx : bhx - cx;
-      const double fy = cy - bly > bhy - cy ? cy - bly : bhy - cy;
-      const double fz = cz - blz > bhz - cz ? cz - blz : bhz - cz;
-      const double dmax2 = fx * fx + fy * fy + fz * fz;
+      double dmin2, dmax2;
+      box_dist2_range(blx, bly, blz, bhx, bhy, bhz, cx, cy, cz, dmin2, dmax2);
       dmin2s[k] = dmin2;
       all_far[k] = dmin2 * (1 - e) > far2;
       all_near[k] = dmax2 * (1 + e) <= far2;
