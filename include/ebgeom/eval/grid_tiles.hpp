@@ -150,19 +150,20 @@ void eval_packed(const GridFrame<T>& f, const std::array<std::size_t, 3>& o,
 /// exceeds its diagonal: closer boxes rarely get a proof (the bounds grow like (radius /
 /// distance)²) and their octants are tried anyway (on the bunny at 256³, fewer failed proofs and
 /// less time than trying from half the diagonal on).
-/// Boxes of fewer than `min_samples` samples are not tried.
-template <class S, class Dist>
-void prove_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
-                 const std::array<std::size_t, 3>& base, const std::array<std::size_t, 3>& lo,
-                 const std::array<std::size_t, 3>& hi, Sign* sg, Dist&& dist,
-                 std::size_t min_samples = 2) {
-  using T = sdf_scalar_t<S>;
+/// Boxes of fewer than `min_samples` samples are not tried; `gate` scales the diagonal (boxes
+/// are tried when `dist(lo, hi)` > gate × diagonal); `try_box` false starts at the octants.
+/// `sign_box(box)` proves a box's sign (`sign_over`, or a `SignScope`'s).
+template <class T, class SignBox, class Dist>
+void prove_signs(SignBox&& sign_box, const GridFrame<T>& f, const std::array<std::size_t, 3>& base,
+                 const std::array<std::size_t, 3>& lo, const std::array<std::size_t, 3>& hi,
+                 Sign* sg, Dist&& dist, std::size_t min_samples = 2, double gate = 1,
+                 bool try_box = true) {
   constexpr std::size_t W = grid_tile;
   if ((hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]) < min_samples) return;
   const Vec3<T> p0 = f.point(base[0] + lo[0], base[1] + lo[1], base[2] + lo[2]);
   const Vec3<T> p1 = f.point(base[0] + hi[0] - 1, base[1] + hi[1] - 1, base[2] + hi[2] - 1);
-  if (dist(lo, hi) > norm(p1 - p0)) {
-    const Sign s = sdf.sign_over(Aabb<T>{p0, p1});
+  if (try_box && dist(lo, hi) > norm(p1 - p0) * T(gate)) {
+    const Sign s = sign_box(Aabb<T>{p0, p1});
     if (s != Sign::unknown) {
       for (std::size_t z = lo[2]; z < hi[2]; ++z)
         for (std::size_t y = lo[1]; y < hi[1]; ++y)
@@ -181,7 +182,29 @@ void prove_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
       b[ax] = upper ? hi[ax] : mid[ax];
       empty = empty || a[ax] >= b[ax];
     }
-    if (!empty) prove_signs(sdf, f, base, a, b, sg, dist, min_samples);
+    if (!empty) prove_signs(sign_box, f, base, a, b, sg, dist, min_samples, gate);
+  }
+}
+
+/// Calls `fn(sign_box)` with `sign_box(box)` = the sign `sdf` proves over a box inside the tile
+/// at `base` (`size` samples per axis): a `SignScope` of the tile's box where the SDF has one
+/// (made at the first box tried, shared by the others), else `sign_over`.
+template <class S, class Fn>
+void with_tile_signer(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
+                      const std::array<std::size_t, 3>& base,
+                      const std::array<std::size_t, 3>& size, Fn&& fn) {
+  using T = sdf_scalar_t<S>;
+  if constexpr (has_sign_scope_v<S>) {
+    const Vec3<T> p0 = f.point(base[0], base[1], base[2]);
+    const Vec3<T> p1 = f.point(base[0] + size[0] - 1, base[1] + size[1] - 1, base[2] + size[2] - 1);
+    typename S::SignScope scope;
+    bool made = false;
+    fn([&](const Aabb<T>& box) {
+      if (!made) sdf.sign_scope(Aabb<T>{p0, p1}, scope), made = true;
+      return scope.sign_over(box);
+    });
+  } else {
+    fn([&](const Aabb<T>& box) { return sdf.sign_over(box); });
   }
 }
 
@@ -219,16 +242,29 @@ void batch_signs(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
 template <class S>
 Sign tile_sign(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
                const std::array<std::size_t, 3>& tile, sdf_scalar_t<S> far) {
+  using T = sdf_scalar_t<S>;
   constexpr std::size_t W = grid_tile;
   const std::array<std::size_t, 3> base{{tile[0] * W, tile[1] * W, tile[2] * W}};
   std::array<std::size_t, 3> size;
   for (int a = 0; a < 3; ++a) size[a] = std::min(f.n[a], base[a] + W) - base[a];
   Sign sg[W * W * W];
   std::fill(sg, sg + W * W * W, Sign::unknown);
-  prove_signs(
-      sdf, f, base, {{0, 0, 0}}, size, sg,
-      [&](const std::array<std::size_t, 3>&, const std::array<std::size_t, 3>&) { return far; },
-      has_batch_sign_v<S> ? std::size_t(9) : std::size_t(2));
+  // The tile's whole box first, whatever its distance; then, with a scope (the boxes share the
+  // walk above the tile), its octants from 0.7 of their diagonal on, not 1: more proofs, fewer
+  // packets (bunny, band of 3 cells at 512³: 0.96 million of the far single tiles' 6.8 million
+  // samples left to the packets instead of 2.09 million; those tiles about a quarter faster).
+  Sign whole = Sign::unknown;
+  with_tile_signer(sdf, f, base, size, [&](auto&& sign_box) {
+    whole = sdf.sign_over(
+        Aabb<T>{f.point(base[0], base[1], base[2]),
+                f.point(base[0] + size[0] - 1, base[1] + size[1] - 1, base[2] + size[2] - 1)});
+    if (whole != Sign::unknown) return;
+    prove_signs(
+        sign_box, f, base, {{0, 0, 0}}, size, sg,
+        [&](const std::array<std::size_t, 3>&, const std::array<std::size_t, 3>&) { return far; },
+        has_batch_sign_v<S> ? 9 : 2, has_sign_scope_v<S> ? 0.7 : 1.0, false);
+  });
+  if (whole != Sign::unknown) return whole;
   batch_signs(sdf, f, base, size, sg, [](std::size_t) { return true; });
   Sign first = Sign::unknown;
   for (std::size_t z = 0; z < size[2]; ++z)
@@ -278,16 +314,17 @@ void eval_split_tile(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
   // 256³: 10% less time in all).
   Sign sg[W * W * W];
   std::fill(sg, sg + W * W * W, Sign::unknown);
-  prove_signs(
-      sdf, f, base, {{0, 0, 0}}, size, sg,
-      [&](const std::array<std::size_t, 3>& lo, const std::array<std::size_t, 3>& hi) {
-        T m = std::numeric_limits<T>::infinity();
-        for (std::size_t z = lo[2]; z < hi[2]; ++z)
-          for (std::size_t y = lo[1]; y < hi[1]; ++y)
-            for (std::size_t x = lo[0]; x < hi[0]; ++x) m = std::min(m, vals[x + W * (y + W * z)]);
-        return m;
-      },
-      has_batch_sign_v<S> ? std::size_t(9) : std::size_t(2));
+  prove_signs([&](const Aabb<T>& box) { return sdf.sign_over(box); }, f, base, {{0, 0, 0}}, size,
+              sg,
+              [&](const std::array<std::size_t, 3>& lo, const std::array<std::size_t, 3>& hi) {
+                T m = std::numeric_limits<T>::infinity();
+                for (std::size_t z = lo[2]; z < hi[2]; ++z)
+                  for (std::size_t y = lo[1]; y < hi[1]; ++y)
+                    for (std::size_t x = lo[0]; x < hi[0]; ++x)
+                      m = std::min(m, vals[x + W * (y + W * z)]);
+                return m;
+              },
+              has_batch_sign_v<S> ? std::size_t(9) : std::size_t(2));
   // The samples left (off the surface): one batch, where the SDF has one.
   batch_signs(sdf, f, base, size, sg, [&](std::size_t l) { return vals[l] > T(0); });
   for (std::size_t z = 0; z < size[2]; ++z)
@@ -509,8 +546,9 @@ GridPlan<sdf_scalar_t<S>> plan_grid(const S& sdf, const GridFrame<sdf_scalar_t<S
           return d < depth;
         }
         // Far: a sign for the whole node, else split; a single tile's samples decide.
-        Sign sign = sdf.sign_over(Aabb<T>{p0, p1});
-        if (sign == Sign::unknown && d == depth) sign = tile_sign(sdf, f, a, ud - r);
+        // A single tile: its box, then its octants (`tile_sign`).
+        const Sign sign =
+            d == depth ? tile_sign(sdf, f, a, ud - r) : sdf.sign_over(Aabb<T>{p0, p1});
         if (sign != Sign::unknown) {
           info.value = sign == Sign::negative ? -ud : ud;
           info.state = 1;

@@ -290,6 +290,31 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
     return side > 0 ? Sign::negative : side < 0 ? Sign::positive : Sign::unknown;
   }
 
+  /// Split-sign protocol, optional part: `sign_over` for several boxes inside one box (the
+  /// scope), sharing the part of the work that is the same for all of them. With the fast winding
+  /// sign, the walk of the tree above the scope (`FastWindingNumber::RangeScope`); otherwise
+  /// `sign_over` itself. Never a sign `sign_at` would not give: `unknown` where unproven.
+  class SignScope {
+   public:
+    Sign sign_over(const Aabb<T>& box) const noexcept {
+      EBGEOM_ASSERT(sdf_ != nullptr); // filled by `sign_scope`
+      if (sdf_->mode_ != SignMode::fast_winding) return sdf_->sign_over(box);
+      const int side = sdf_->fast_.range_over(range_, box).side();
+      return side > 0 ? Sign::negative : side < 0 ? Sign::positive : Sign::unknown;
+    }
+
+   private:
+    friend class SignedMeshSdf;
+    const SignedMeshSdf* sdf_ = nullptr;
+    typename FastWindingNumber<T, K>::RangeScope range_;
+  };
+
+  /// Fills `out` for boxes inside `box` (see `SignScope`).
+  void sign_scope(const Aabb<T>& box, SignScope& out) const noexcept {
+    out.sdf_ = this;
+    if (mode_ == SignMode::fast_winding) fast_.scope(box, out.range_);
+  }
+
   /// Values at a tile of lattice samples, bit for bit `(*this)(pts[l])`: the distances of
   /// `MeshSdf::eval_lattice`, then the sign of the mode per sample (the fast winding sign in
   /// packets of nearby samples, `signs_at`).

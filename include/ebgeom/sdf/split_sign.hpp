@@ -71,6 +71,25 @@ struct has_batch_sign<
 template <class S> inline constexpr bool has_batch_sign_v = detail::has_batch_sign<S>::value;
 
 namespace detail {
+template <class S, class = void> struct has_sign_scope : std::false_type {};
+template <class S>
+struct has_sign_scope<S,
+                      std::void_t<typename S::SignScope,
+                                  decltype(std::declval<const S&>().sign_scope(
+                                      std::declval<const Aabb<typename S::scalar_type>&>(),
+                                      std::declval<typename S::SignScope&>())),
+                                  decltype(std::declval<const typename S::SignScope&>().sign_over(
+                                      std::declval<const Aabb<typename S::scalar_type>&>()))>>
+    : std::true_type {};
+} // namespace detail
+
+/// True when a split-sign `S` also has scoped box signs: a type `S::SignScope` with `Sign
+/// sign_over(const Aabb<T>& box) const`, filled by `void sign_scope(const Aabb<T>& scope,
+/// SignScope& out) const`, whose answers for boxes inside the scope mean what `S::sign_over`'s
+/// do (grid samplers use it for the boxes inside one far tile).
+template <class S> inline constexpr bool has_sign_scope_v = detail::has_sign_scope<S>::value;
+
+namespace detail {
 /// Calls `f(x, y, z)` for every sample of a block of `dims[0] x dims[1] x dims[2]` lattice
 /// samples, in groups of 4x4x2 neighbours (x fastest inside a group and between groups): the
 /// order in which a batch sign's caller lists samples, so that the packets of `signs_at` (32

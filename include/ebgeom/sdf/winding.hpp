@@ -1189,6 +1189,88 @@ template <class T, int K = 4> class FastWindingNumber {
     return detail::finish_range(s, x, double(std::numeric_limits<T>::epsilon()));
   }
 
+  /// The part of `range_over`'s walk that every box inside one box (the scope) shares: the
+  /// clusters far from every point of the scope (at least `batch_kappa` times its radius away),
+  /// summed into one model at its centre with a bound on the model's Hessian over the scope; the
+  /// leaves every point of the scope opens; and the children that some of its points take as far
+  /// and others open, which each box tests itself (`bound_batch`'s frontier). Made by `scope`,
+  /// used by `range_over(scope, box)`. About 7 KB; make it once per scope, on the stack.
+  class RangeScope {
+   public:
+    /// False when the shared walk did not fit (then `range_over(scope, box)` walks alone).
+    bool shared() const noexcept { return ok_; }
+
+   private:
+    friend class FastWindingNumber;
+    Aabb<T> box_;
+    Frontier fr_;
+    bool ok_ = false;
+  };
+
+  /// Fills `out` for boxes inside `box` (see `RangeScope`). Costs about one `range_over(box)`.
+  void scope(const Aabb<T>& box, RangeScope& out) const noexcept {
+    out.box_ = box;
+    out.fr_ = Frontier{};
+    out.ok_ = false;
+    if (!bvh_.root.is_inner() || !all_finite(box.lo) || !all_finite(box.hi) || box.is_empty())
+      return;
+    const detail::RangeBox x(box);
+    with_active_isa([&](auto isa) {
+      out.ok_ = detail::WindingKernels<decltype(isa)::value>::frontier(*this, x, out.fr_);
+    });
+  }
+
+  /// `range_over(box)` for a box inside the scope `sc` (see `RangeScope`): the same guarantee,
+  /// every value `(*this)(p)` computes for p in `box` lies in the interval, from the scope's
+  /// shared model (its Taylor expansion at the scope's centre, moved to the box's), the scope's
+  /// leaves and the children the scope's points decide for themselves, each over `box` as
+  /// `range_over` bounds them. Cheaper than `range_over(box)` when several boxes share a scope;
+  /// a box not inside the scope, or a scope whose walk did not fit, takes `range_over(box)`.
+  WindingRange range_over(const RangeScope& sc, const Aabb<T>& box) const noexcept {
+    if (!sc.ok_ || !sc.box_.contains(box)) return range_over(box);
+    const detail::RangeBox xs(sc.box_), y(box);
+    const Frontier& fr = sc.fr_;
+    detail::RangeSum s;
+    // The model f(p) = value + grad·(p - cs) + R(p), |R(p)| <= hess |p - cs|² / 2 over the
+    // scope (hess bounds the Hessian's norm there), written at the box's centre cy: f(cy) lies
+    // within value + grad·(cy - cs) ± hess dc² / 2 (dc = |cy - cs|), its gradient within
+    // grad ± hess dc there (so grad·(p - cy) errs by at most hess dc rho), and the gradient's
+    // norm is at most |grad| + hess (dc + rho) over the box.
+    const Vec3<double> dcv = y.c - xs.c;
+    const double dc = norm(dcv) * (1 + 1e-12), h = fr.hess;
+    s.value = fr.value + dot(fr.grad, dcv);
+    s.grad = fr.grad;
+    s.hess = h;
+    s.grad1 = (norm(fr.grad) + h * (dc + y.rho)) * (1 + 1e-12);
+    const double off = (0.5 * h * dc * dc + h * dc * y.rho) * (1 + 1e-9) +
+                       1e-11 * (fr.slack + std::abs(s.value)) + 1e-300;
+    s.ilo = -off, s.ihi = off;
+    // Rounding: each modelled child counts as `far_range` counts it (two terms, its magnitude
+    // bound at the distance where queries take it as far, `RangeNode::magf`).
+    s.mag = fr.mag;
+    s.terms = 2 * std::size_t(K) * fr.nodes;
+    with_active_isa([&](auto isa) {
+      constexpr Isa I = decltype(isa)::value;
+      for (std::uint32_t i = 0; i < fr.leaves && s.ok; ++i)
+        leaf_range(s, y, fr.leaf[i].index, fr.leaf[i].count);
+      // The children the scope's points decide for themselves, tested as `node_range_inline`
+      // tests them, over the box.
+      const double e = 16 * double(std::numeric_limits<T>::epsilon());
+      for (std::uint32_t i = 0; i < fr.items && s.ok; ++i) {
+        const std::uint32_t ni = fr.item_node[i];
+        const int k = fr.item_k[i];
+        const WindingNode<T, K>& c = nodes_[ni];
+        double dmin2, dmax2;
+        box_dist2_range(y.box.lo.x, y.box.lo.y, y.box.lo.z, y.box.hi.x, y.box.hi.y, y.box.hi.z,
+                        double(c.cx[k]), double(c.cy[k]), double(c.cz[k]), dmin2, dmax2);
+        const double far2 = double(c.far2[k]);
+        s.add(child_range_inline<I>(ni, k, y, dmin2 * (1 - e) > far2, dmax2 * (1 + e) <= far2,
+                                    dmin2));
+      }
+    });
+    return detail::finish_range(s, y, double(std::numeric_limits<T>::epsilon()));
+  }
+
   double beta() const noexcept { return beta_; }
   std::size_t triangle_count() const noexcept { return n_; }
   const bvh::WideBvh<T, K>& tree() const noexcept { return bvh_; }
@@ -1555,7 +1637,6 @@ template <class T, int K = 4> class FastWindingNumber {
     const double blx = x.box.lo.x, bly = x.box.lo.y, blz = x.box.lo.z;
     const double bhx = x.box.hi.x, bhy = x.box.hi.y, bhz = x.box.hi.z;
     const WindingNode<T, K>& c = nodes_[ni];
-    const RangeNode& rc = range_nodes_[ni];
     const bvh::WideNode<T, K>& node = bvh_.nodes[ni];
     alignas(64) double dmin2s[K];
     std::uint8_t all_far[K], all_near[K];
@@ -1575,24 +1656,31 @@ template <class T, int K = 4> class FastWindingNumber {
       s.mag += o.mag, s.cond += o.cond, s.terms += o.terms, s.ok = s.ok && o.ok;
     };
     for (int k = 0; k < K && s.ok; ++k) {
-      const bvh::ChildRef r = node.child[k];
-      if (r.is_empty()) continue;
-      detail::RangeSum fv, nv;
-      if (!all_near[k]) far_range(fv, x, c, rc, k, all_far[k], detail::winding_sqrt(dmin2s[k]));
-      if (!all_far[k]) {
-        if (r.is_leaf())
-          leaf_range(nv, x, r.index, r.count);
-        else if (r.is_inner())
-          nv = detail::WindingKernels<I>::node_range(*this, r.index, x);
-      }
-      if (all_far[k])
-        add(fv);
-      else if (all_near[k])
-        add(nv);
-      else
-        add(detail::RangeSum::hull(x, fv, nv));
+      if (node.child[k].is_empty()) continue;
+      add(child_range_inline<I>(ni, k, x, all_far[k], all_near[k], dmin2s[k]));
     }
     return s;
+  }
+
+  /// The term of child `k` of node `ni` over the box (see `node_range_inline`), from the tests of
+  /// its cluster's distances to the box (`all_far`: far for every point, `all_near`: near for
+  /// every point; `dmin2` the squared distance from the box to its centre): its far field's model
+  /// (`far_range`), its leaf's or subtree's interval, or the hull of both.
+  template <Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE detail::RangeSum
+  child_range_inline(std::uint32_t ni, int k, const detail::RangeBox& x, bool all_far,
+                     bool all_near, double dmin2) const noexcept {
+    const bvh::ChildRef r = bvh_.nodes[ni].child[k];
+    detail::RangeSum fv, nv;
+    if (!all_near)
+      far_range(fv, x, nodes_[ni], range_nodes_[ni], k, all_far, detail::winding_sqrt(dmin2));
+    if (!all_far) {
+      if (r.is_leaf())
+        leaf_range(nv, x, r.index, r.count);
+      else if (r.is_inner())
+        nv = detail::WindingKernels<I>::node_range(*this, r.index, x);
+    }
+    return all_far ? fv : all_near ? nv : detail::RangeSum::hull(x, fv, nv);
   }
 
   /// Slot range [lo, hi) covered by a child (subtrees are contiguous in leaf order).

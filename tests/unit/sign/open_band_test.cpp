@@ -97,6 +97,71 @@ TYPED_TEST(OpenBandTest, RangesHoldEveryComputedValueAndDecideFarBoxes) {
   }
 }
 
+// Boxes inside one scope share the walk above it (`FastWindingNumber::RangeScope`): the scoped
+// intervals must hold every computed value too, and decide about as many boxes as `range_over`.
+TYPED_TEST(OpenBandTest, ScopedRangesHoldEveryComputedValue) {
+  using T = TypeParam;
+  const PolygonSoup<T> fine = test::remove_cap(make_icosphere<T>(4).value(), T(0.3));
+  auto meshes = test_meshes<T>();
+  meshes.push_back({"finer open ball", fine});
+  for (const auto& [name, soup] : meshes) {
+    SCOPED_TRACE(name);
+    const TriangleMesh<T> m = make_triangle_mesh(soup).value();
+    const auto fast = FastWindingNumber<T>::make(m).value();
+    int shared = 0, decided_scoped = 0, decided_plain = 0, tried = 0;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    typename FastWindingNumber<T>::RangeScope scope;
+    for (const auto& c : random_boxes(m.bounds().grown(T(1)), 150)) {
+      fast.scope(c.box, scope);
+      shared += scope.shared();
+      // The octants, the scope itself and random boxes inside it.
+      std::vector<Aabb<T>> subs{c.box};
+      const Vec3<T> mid = c.box.center();
+      for (int k = 0; k < 8; ++k)
+        subs.push_back(
+            {{k & 1 ? mid.x : c.box.lo.x, k & 2 ? mid.y : c.box.lo.y, k & 4 ? mid.z : c.box.lo.z},
+             {k & 1 ? c.box.hi.x : mid.x, k & 2 ? c.box.hi.y : mid.y, k & 4 ? c.box.hi.z : mid.z}});
+      for (int k = 0; k < 4; ++k) {
+        Vec3<T> a, b;
+        for (int ax = 0; ax < 3; ++ax) {
+          const double lo = double(c.box.lo[ax]), w = double(c.box.hi[ax] - c.box.lo[ax]);
+          const double x0 = lo + u(rng) * w, x1 = lo + u(rng) * w;
+          a[ax] = T(std::min(x0, x1)), b[ax] = T(std::max(x0, x1));
+        }
+        subs.push_back({a, b});
+      }
+      for (std::size_t i = 0; i < subs.size(); ++i) {
+        const Aabb<T>& box = subs[i];
+        const WindingRange r = fast.range_over(scope, box);
+        std::vector<Vec3<T>> pts = test::random_points(box, 16, std::uint64_t(i) + 7);
+        for (int k = 0; k < 8; ++k)
+          pts.push_back({k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y,
+                         k & 4 ? box.hi.z : box.lo.z});
+        for (const auto& p : pts) {
+          const double w = double(fast(p));
+          ASSERT_TRUE(r.lo <= w && w <= r.hi)
+              << p << ": " << w << " not in " << r.lo << " " << r.hi;
+          if (r.side() != 0) {
+            ASSERT_EQ(r.side() > 0, fast(p) > T(0.5)) << p;
+          }
+        }
+        ++tried;
+        decided_scoped += r.side() != 0;
+        decided_plain += fast.range_over(box).side() != 0;
+      }
+    }
+    // Most scopes share a walk, and the scoped bounds are useful, not only valid.
+    EXPECT_GT(shared, 100);
+    EXPECT_GT(decided_scoped, tried / 3);
+    EXPECT_GE(decided_scoped, decided_plain * 9 / 10);
+    // A box outside the scope takes `range_over` alone.
+    const Aabb<T> away{Vec3<T>::constant(T(5)), Vec3<T>::constant(T(6))};
+    fast.scope(Aabb<T>{Vec3<T>::constant(T(-3)), Vec3<T>::constant(T(-2))}, scope);
+    EXPECT_EQ(fast.range_over(scope, away).side(), -1);
+  }
+}
+
 TYPED_TEST(OpenBandTest, RangesOfAClosedBallAreInsideAndOutside) {
   using T = TypeParam;
   const TriangleMesh<T> m = make_triangle_mesh(make_icosphere<T>(3).value()).value();
