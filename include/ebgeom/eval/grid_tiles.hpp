@@ -253,18 +253,16 @@ Sign tile_sign(const S& sdf, const GridFrame<sdf_scalar_t<S>>& f,
   // walk above the tile), its octants from 0.7 of their diagonal on, not 1: more proofs, fewer
   // packets (bunny, band of 3 cells at 512³: 0.96 million of the far single tiles' 6.8 million
   // samples left to the packets instead of 2.09 million; those tiles about a quarter faster).
-  Sign whole = Sign::unknown;
+  const Sign whole = sdf.sign_over(
+      Aabb<T>{f.point(base[0], base[1], base[2]),
+              f.point(base[0] + size[0] - 1, base[1] + size[1] - 1, base[2] + size[2] - 1)});
+  if (whole != Sign::unknown) return whole;
   with_tile_signer(sdf, f, base, size, [&](auto&& sign_box) {
-    whole = sdf.sign_over(
-        Aabb<T>{f.point(base[0], base[1], base[2]),
-                f.point(base[0] + size[0] - 1, base[1] + size[1] - 1, base[2] + size[2] - 1)});
-    if (whole != Sign::unknown) return;
     prove_signs(
         sign_box, f, base, {{0, 0, 0}}, size, sg,
         [&](const std::array<std::size_t, 3>&, const std::array<std::size_t, 3>&) { return far; },
         has_batch_sign_v<S> ? 9 : 2, has_sign_scope_v<S> ? 0.7 : 1.0, false);
   });
-  if (whole != Sign::unknown) return whole;
   batch_signs(sdf, f, base, size, sg, [](std::size_t) { return true; });
   Sign first = Sign::unknown;
   for (std::size_t z = 0; z < size[2]; ++z)
