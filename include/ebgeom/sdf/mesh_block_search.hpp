@@ -33,9 +33,12 @@ template <class T, int K, int W> struct BlockSearch {
 
   /// Nearest triangle slot (block lane) by squared distance; `best2` is the initial bound. `I`: the
   /// instruction set of the kernels (`core/isa.hpp`); `MeshSearchKernels<I>` compiles it for I.
+  /// Without the farthest-box shrink of `bvh::nearest`: the queries start from a seed triangle's
+  /// distance, which that shrink seldom lowers, and its extra box pass at each node on the way to
+  /// the first leaf made float queries 1-6% slower (docs/performance.md).
   template <Isa I = native_isa>
   void nearest_slot(const Vec3<T>& p, T& best2, std::uint32_t& best) const noexcept {
-    bvh::nearest<true, I>(
+    bvh::nearest<false, I>(
         *bvh, p, best2,
         [&](std::uint32_t first_block, std::uint32_t count, T& b2) noexcept {
           scan_blocks<I>(first_block, count, p, b2, best);
