@@ -189,6 +189,11 @@ struct NoPrefetch {
   void operator()(ChildRef) const noexcept {}
 };
 
+/// No second bound (the default hook of `nearest`).
+struct NoRefine {
+  template <class T, int K> void operator()(std::uint32_t, T (&)[K]) const noexcept {}
+};
+
 /// Nearest-first branch and bound (see the file comment). `best2` is in/out: the initial bound and
 /// the final best squared distance the leaf callback reported.
 /// A point with a NaN or infinite coordinate visits nothing (`best2` is left as it was): its box
@@ -197,10 +202,13 @@ struct NoPrefetch {
 /// `prefetch(child)` is called for each child that survives a node's box test, nearest first, when
 /// the node is expanded (before any of them is visited): a hook to start loading what the visit
 /// will read (the search's own order and results do not depend on it).
+/// `refine(node, d2)` may raise the children's squared box distances `d2` of inner node `node`
+/// to any other lower bound of the distance to their primitives (`NodeObbs`), before they are
+/// ordered and pruned.
 template <bool Shrink = false, Isa I = native_isa, class T, int K, class BV, class LeafFn,
-          class PrefetchFn = NoPrefetch>
+          class PrefetchFn = NoPrefetch, class RefineFn = NoRefine>
 void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& leaf,
-             T abs_slack = T(0), PrefetchFn prefetch = {}) noexcept {
+             T abs_slack = T(0), PrefetchFn prefetch = {}, RefineFn refine = {}) noexcept {
   if (bvh.root.is_empty() || !all_finite(p)) return;
   if (bvh.root.is_leaf()) {
     if (bvh.box.distance2(p) < prune_limit(best2, abs_slack))
@@ -220,6 +228,7 @@ void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& 
       const auto& n = bvh.nodes[cur.index];
       T d2[K];
       detail::node_dist2<I>(n, p, d2);
+      refine(cur.index, d2);
       if (Shrink && shrink) {
         T far2[K];
         detail::node_far_dist2<I>(n, p, far2);

@@ -51,8 +51,10 @@ namespace ebgeom {
 /// - Sign: the pseudonormal of the closest feature (Bærentzen & Aanæs 2005): exact for closed,
 ///   consistently oriented, manifold meshes (check with `validate`).
 /// - Memory: the `TriangleMesh` (~48 B/triangle in float) + blocks (36 B per lane, leaves padded
-///   to whole blocks) + 4 B per lane of triangle ids + nodes + a seed grid of 8³ triangles
-///   (18 KB in float, 36 KB in double, whatever the mesh's size); `memory_bytes()` reports it.
+///   to whole blocks) + 4 B per lane of triangle ids + nodes + the oriented boxes of the leaves
+///   (`bvh::NodeObbs`, 15 numbers per child of each node) + a seed grid of 8³ triangles (18 KB in
+///   float, 36 KB in double, whatever the mesh's size): about 104 B per triangle in float and 198
+///   in double; `memory_bytes()` reports it.
 /// - Queries are O(log n) on average, allocation-free, and thread-safe (immutable object).
 template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
  public:
@@ -91,6 +93,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     s.bvh_ = bvh::flatten<K>(
         bvh::build(Span<const Aabb<T>>(boxes), Span<const Vec3<T>>(centroids), options));
     s.pack_blocks();
+    s.fill_obbs();
     s.slack_ = rounding_slack(s.bvh_.box);
     s.fill_seeds();
     s.plane_margin_ = plane_margin(s.bvh_.box);
@@ -259,6 +262,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
         b.extend(mesh_.triangle_bounds(block_tri_[first_block * std::size_t(W) + s]));
       return b;
     });
+    fill_obbs();
     fill_seeds();
     return {};
   }
@@ -272,7 +276,8 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
   std::size_t memory_bytes() const noexcept {
     return mesh_.memory_bytes() + blocks_.size() * sizeof(TriBlock<T, W>) +
            block_tri_.size() * sizeof(std::uint32_t) +
-           seed_tri_.size() * sizeof(std::array<Vec3<T>, 3>) + bvh_.memory_bytes();
+           seed_tri_.size() * sizeof(std::array<Vec3<T>, 3>) + bvh_.memory_bytes() +
+           obbs_.size() * sizeof(bvh::NodeObbs<T, K>);
   }
 
  private:
@@ -336,9 +341,44 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
     }
   }
 
+  /// Corner j (0..2) of the triangle in block slot `s`, as the block holds it.
+  Vec3<T> slot_corner(std::size_t s, int j) const noexcept {
+    const TriBlock<T, W>& b = blocks_[s / W];
+    const int l = int(s % W);
+    if (j == 0) return {b.ax[l], b.ay[l], b.az[l]};
+    if (j == 1) return {b.bx[l], b.by[l], b.bz[l]};
+    return {b.cx[l], b.cy[l], b.cz[l]};
+  }
+
+  /// The oriented boxes of every node's leaf children (`bvh::NodeObbs`): around the corners of
+  /// the leaf's triangles, one axis along their summed normals.
+  void fill_obbs() {
+    obbs_.resize(bvh_.nodes.size());
+    for (std::size_t i = 0; i < bvh_.nodes.size(); ++i) {
+      bvh::NodeObbs<T, K>& o = obbs_[i];
+      o.clear();
+      for (int k = 0; k < K; ++k) {
+        const bvh::ChildRef c = bvh_.nodes[i].child[k];
+        if (!c.is_leaf()) continue;
+        const std::size_t first = std::size_t(c.index) * W;
+        auto corner = [&](std::size_t j) {
+          const Vec3<T> v = slot_corner(first + j / 3, int(j % 3));
+          return Vec3<double>{double(v.x), double(v.y), double(v.z)};
+        };
+        Vec3<double> normal{0, 0, 0};
+        for (std::size_t t = 0; t < c.count; ++t) {
+          const Vec3<double> a = corner(3 * t);
+          normal = normal + cross(corner(3 * t + 1) - a, corner(3 * t + 2) - a);
+        }
+        o.fit(k, normal, std::size_t(c.count) * 3, corner);
+      }
+    }
+  }
+
   /// The nearest-triangle search over this object's arrays.
   detail::BlockSearch<T, K, W> block_search() const noexcept {
-    return {&bvh_, blocks_.data(), block_tri_.data(), slack_};
+    return {&bvh_, blocks_.data(), block_tri_.data(), slack_,
+            obbs_.empty() ? nullptr : obbs_.data()};
   }
 
   /// The search with the kernels of the active instruction set (`core/isa.hpp`).
@@ -496,7 +536,8 @@ template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
   T plane_margin_ = 0;
   bvh::WideBvh<T, K> bvh_;
   std::vector<TriBlock<T, W>> blocks_;
-  std::vector<std::uint32_t> block_tri_; ///< triangle id of each block lane
+  std::vector<std::uint32_t> block_tri_;  ///< triangle id of each block lane
+  std::vector<bvh::NodeObbs<T, K>> obbs_; ///< per node: its leaf children's oriented boxes
 };
 
 } // namespace ebgeom

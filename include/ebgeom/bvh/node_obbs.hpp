@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
+#pragma once
+/// \file
+/// Oriented boxes of a wide BVH node's leaf children: a second, tighter lower bound on the distance
+/// to a leaf's triangles than its axis-aligned box, for nearest searches (`MeshSdf`).
+///
+/// A leaf of a mesh BVH holds a small surface patch. Its axis-aligned box is fat wherever the
+/// patch is tilted against the axes, and a point far from the surface finds many such boxes
+/// within its nearest distance. An oriented box with one axis along the patch's mean normal is
+/// about as thin as the patch is curved: on the meshes of docs/performance.md, queries scan 1.6 to
+/// 3.8 times fewer leaves with both bounds than with the axis-aligned boxes alone.
+///
+/// `NodeObbs<T, K>` stores, structure of arrays like `WideNode`, per child: a centre, three unit
+/// axes and the half extents along them. `raise_dist2` computes the squared distance from `p` to
+/// each child's oriented box and raises the node's box distances to it. Inner and empty children
+/// hold a box that never raises anything (zero axes, infinite extents).
+///
+/// Rounding. The value is a lower bound of the exact squared distance to every triangle of the
+/// leaf, whatever the point (see `fit`): the axes are rounded to T and shortened so that the
+/// rounded frame never lengthens a vector; the half extents are computed in double from the
+/// rounded frame, rounded up and widened by 32 ulps of the box's size, which covers the absolute
+/// part of the error of `raise_dist2` (one subtraction per coordinate, a three-term dot product);
+/// and the result is scaled by 1 - 64 eps, which covers the relative part. So a leaf holding the
+/// nearest triangle is never skipped on this bound, as on an exact box distance.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+
+#include "ebgeom/core/config.hpp"
+#include "ebgeom/core/isa.hpp"
+#include "ebgeom/core/vec.hpp"
+
+#if defined(__SSE2__) || defined(__AVX__) || EBGEOM_ISA_DISPATCH
+#include <immintrin.h>
+#endif
+
+EBGEOM_BEGIN_EXACT_FP
+
+namespace ebgeom::bvh {
+
+/// Oriented boxes of the K children of one node (see the file comment).
+template <class T, int K> struct NodeObbs {
+  T cx[K], cy[K], cz[K]; ///< centres
+  T ux[K], uy[K], uz[K]; ///< first tangent axis
+  T vx[K], vy[K], vz[K]; ///< second tangent axis
+  T nx[K], ny[K], nz[K]; ///< normal axis
+  T hu[K], hv[K], hn[K]; ///< half extents along u, v, n
+
+  /// Every child: a box that raises nothing.
+  void clear() noexcept {
+    for (int k = 0; k < K; ++k) clear(k);
+  }
+  void clear(int k) noexcept {
+    cx[k] = cy[k] = cz[k] = ux[k] = uy[k] = uz[k] = vx[k] = vy[k] = vz[k] = nx[k] = ny[k] = nz[k] =
+        T(0);
+    hu[k] = hv[k] = hn[k] = std::numeric_limits<T>::infinity();
+  }
+
+  /// Child k's box around the points `corner(i)`, i < n (the corners of a leaf's triangles): the
+  /// normal `normal` (the leaf's summed triangle normals, any length; a zero or non-finite one
+  /// gives the coordinate axes), the tangent axes along the principal directions of the corners
+  /// projected on the tangent plane.
+  template <class CornerFn>
+  void fit(int k, const Vec3<double>& normal, std::size_t n, CornerFn&& corner) noexcept {
+    Vec3<double> a[3]; // u, v, n
+    const double len = norm(normal);
+    if (!(len > 0) || !std::isfinite(len)) {
+      a[0] = {1, 0, 0}, a[1] = {0, 1, 0}, a[2] = {0, 0, 1};
+    } else {
+      a[2] = normal / len;
+      const Vec3<double> h = std::abs(a[2].x) < 0.9 ? Vec3<double>{1, 0, 0} : Vec3<double>{0, 1, 0};
+      const Vec3<double> t0 = normalized(cross(h, a[2])), t1 = cross(a[2], t0);
+      // Principal direction in the plane: angle of the 2x2 covariance's main axis.
+      Vec3<double> mean{0, 0, 0};
+      for (std::size_t i = 0; i < n; ++i) mean = mean + corner(i);
+      mean = mean / double(n);
+      double sxx = 0, syy = 0, sxy = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec3<double> d = corner(i) - mean;
+        const double x = dot(d, t0), y = dot(d, t1);
+        sxx += x * x, syy += y * y, sxy += x * y;
+      }
+      const double th = 0.5 * std::atan2(2 * sxy, sxx - syy);
+      a[0] = t0 * std::cos(th) + t1 * std::sin(th);
+      a[1] = cross(a[2], a[0]);
+    }
+    // Axes rounded to T, then shortened by 4 ulps: |a| <= 1 and the frame never lengthens.
+    constexpr double shorten = 1 - 4 * double(std::numeric_limits<T>::epsilon());
+    Vec3<double> r[3];
+    for (int q = 0; q < 3; ++q)
+      r[q] = {double(T(a[q].x * shorten)), double(T(a[q].y * shorten)),
+              double(T(a[q].z * shorten))};
+    // Extents in the rounded frame, then the centre (rounded to T) and half extents around it.
+    double lo[3], hi[3];
+    for (int q = 0; q < 3; ++q) lo[q] = std::numeric_limits<double>::infinity(), hi[q] = -lo[q];
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3<double> x = corner(i);
+      for (int q = 0; q < 3; ++q) {
+        const double t = dot(r[q], x);
+        lo[q] = std::min(lo[q], t), hi[q] = std::max(hi[q], t);
+      }
+    }
+    Vec3<double> c{0, 0, 0};
+    for (int q = 0; q < 3; ++q) c = c + r[q] * (0.5 * (lo[q] + hi[q]));
+    const Vec3<double> ct{double(T(c.x)), double(T(c.y)), double(T(c.z))};
+    double h[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3<double> d = corner(i) - ct;
+      for (int q = 0; q < 3; ++q) h[q] = std::max(h[q], std::abs(dot(r[q], d)));
+    }
+    const double margin = 32 * double(std::numeric_limits<T>::epsilon()) * (h[0] + h[1] + h[2]);
+    T ht[3];
+    for (int q = 0; q < 3; ++q) {
+      ht[q] = T(h[q] + margin);
+      if (double(ht[q]) < h[q] + margin)
+        ht[q] = std::nextafter(ht[q], std::numeric_limits<T>::infinity());
+    }
+    cx[k] = T(ct.x), cy[k] = T(ct.y), cz[k] = T(ct.z);
+    ux[k] = T(r[0].x), uy[k] = T(r[0].y), uz[k] = T(r[0].z);
+    vx[k] = T(r[1].x), vy[k] = T(r[1].y), vz[k] = T(r[1].z);
+    nx[k] = T(r[2].x), ny[k] = T(r[2].y), nz[k] = T(r[2].z);
+    hu[k] = ht[0], hv[k] = ht[1], hn[k] = ht[2];
+  }
+};
+
+/// The factor applied to a computed oriented-box distance (see the file comment).
+template <class T> inline constexpr T obb_shrink = T(1) - T(64) * std::numeric_limits<T>::epsilon();
+
+/// `d2[k] = max(d2[k], squared distance from p to child k's oriented box)`, generic form.
+template <class T, int K>
+EBGEOM_FORCE_INLINE void raise_dist2_generic(const NodeObbs<T, K>& o, const Vec3<T>& p,
+                                             T (&d2)[K]) noexcept {
+  for (int k = 0; k < K; ++k) {
+    const T dx = p.x - o.cx[k], dy = p.y - o.cy[k], dz = p.z - o.cz[k];
+    const T tu = o.ux[k] * dx + o.uy[k] * dy + o.uz[k] * dz;
+    const T tv = o.vx[k] * dx + o.vy[k] * dy + o.vz[k] * dz;
+    const T tn = o.nx[k] * dx + o.ny[k] * dy + o.nz[k] * dz;
+    const T gu = std::max(std::abs(tu) - o.hu[k], T(0));
+    const T gv = std::max(std::abs(tv) - o.hv[k], T(0));
+    const T gn = std::max(std::abs(tn) - o.hn[k], T(0));
+    const T s = (gu * gu + gv * gv + gn * gn) * obb_shrink<T>;
+    d2[k] = std::max(d2[k], s);
+  }
+}
+
+#if defined(__SSE2__)
+/// One axis of `raise_dist2_sse`: the squared gap of the projection of `d` on axis a beyond h.
+EBGEOM_FORCE_INLINE __m128 obb_gap2_sse(const float* ax, const float* ay, const float* az,
+                                        const float* h, __m128 dx, __m128 dy, __m128 dz) noexcept {
+  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 t =
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(ax), dx), _mm_mul_ps(_mm_loadu_ps(ay), dy)),
+                 _mm_mul_ps(_mm_loadu_ps(az), dz));
+  const __m128 g =
+      _mm_max_ps(_mm_sub_ps(_mm_and_ps(t, abs_mask), _mm_loadu_ps(h)), _mm_setzero_ps());
+  return _mm_mul_ps(g, g);
+}
+
+/// K = 4 floats in one SSE register (baseline x86-64).
+EBGEOM_FORCE_INLINE void raise_dist2_sse(const NodeObbs<float, 4>& o, const Vec3<float>& p,
+                                         float (&d2)[4]) noexcept {
+  const __m128 dx = _mm_sub_ps(_mm_set1_ps(p.x), _mm_loadu_ps(o.cx));
+  const __m128 dy = _mm_sub_ps(_mm_set1_ps(p.y), _mm_loadu_ps(o.cy));
+  const __m128 dz = _mm_sub_ps(_mm_set1_ps(p.z), _mm_loadu_ps(o.cz));
+  const __m128 s =
+      _mm_mul_ps(_mm_add_ps(_mm_add_ps(obb_gap2_sse(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
+                                       obb_gap2_sse(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
+                            obb_gap2_sse(o.nx, o.ny, o.nz, o.hn, dx, dy, dz)),
+                 _mm_set1_ps(obb_shrink<float>));
+  _mm_storeu_ps(d2, _mm_max_ps(_mm_loadu_ps(d2), s));
+}
+#endif
+
+namespace detail {
+#if EBGEOM_ISA_DISPATCH || defined(__AVX__)
+/// One axis of `raise_dist2_avx`: the squared gap of the projection of `d` on axis a beyond h.
+EBGEOM_TARGET_AVX inline __m256d obb_gap2_avx(const double* ax, const double* ay, const double* az,
+                                              const double* h, __m256d dx, __m256d dy,
+                                              __m256d dz) noexcept {
+  const __m256d abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+  const __m256d t = _mm256_add_pd(
+      _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(ax), dx), _mm256_mul_pd(_mm256_loadu_pd(ay), dy)),
+      _mm256_mul_pd(_mm256_loadu_pd(az), dz));
+  const __m256d g = _mm256_max_pd(_mm256_sub_pd(_mm256_and_pd(t, abs_mask), _mm256_loadu_pd(h)),
+                                  _mm256_setzero_pd());
+  return _mm256_mul_pd(g, g);
+}
+
+/// K = 4 doubles in one AVX register.
+EBGEOM_TARGET_AVX inline void raise_dist2_avx(const NodeObbs<double, 4>& o, const Vec3<double>& p,
+                                              double (&d2)[4]) noexcept {
+  const __m256d dx = _mm256_sub_pd(_mm256_set1_pd(p.x), _mm256_loadu_pd(o.cx));
+  const __m256d dy = _mm256_sub_pd(_mm256_set1_pd(p.y), _mm256_loadu_pd(o.cy));
+  const __m256d dz = _mm256_sub_pd(_mm256_set1_pd(p.z), _mm256_loadu_pd(o.cz));
+  const __m256d s =
+      _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(obb_gap2_avx(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
+                                                obb_gap2_avx(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
+                                  obb_gap2_avx(o.nx, o.ny, o.nz, o.hn, dx, dy, dz)),
+                    _mm256_set1_pd(obb_shrink<double>));
+  _mm256_storeu_pd(d2, _mm256_max_pd(_mm256_loadu_pd(d2), s));
+}
+#endif
+} // namespace detail
+
+/// `d2[k] = max(d2[k], squared distance from p to child k's oriented box, less 64 ulps)` on
+/// instruction set I. The forms compute the same operations in the same order: same values.
+template <Isa I = native_isa, class T, int K>
+EBGEOM_FORCE_INLINE void raise_dist2(const NodeObbs<T, K>& o, const Vec3<T>& p,
+                                     T (&d2)[K]) noexcept {
+#if EBGEOM_ISA_DISPATCH || defined(__AVX__)
+  if constexpr (std::is_same_v<T, double> && K == 4 && I >= Isa::avx2)
+    return detail::raise_dist2_avx(o, p, d2);
+#endif
+#if defined(__SSE2__)
+  if constexpr (std::is_same_v<T, float> && K == 4) return raise_dist2_sse(o, p, d2);
+#endif
+  raise_dist2_generic(o, p, d2);
+}
+
+} // namespace ebgeom::bvh
+
+EBGEOM_END_EXACT_FP

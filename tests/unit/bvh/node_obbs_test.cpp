@@ -1,0 +1,209 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
+#include "ebgeom/bvh/node_obbs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ebgeom/core/isa.hpp"
+#include "ebgeom/geom/closest_point_triangle.hpp"
+#include "test_support.hpp"
+
+using namespace ebgeom;
+using namespace ebgeom::bvh;
+
+template <class T> class NodeObbsTest : public ::testing::Test {};
+TYPED_TEST_SUITE(NodeObbsTest, test::FloatTypes);
+
+namespace {
+template <class T> using Tri = std::array<Vec3<T>, 3>;
+
+/// A patch of 16 triangles of a given kind, `size` across, centred near `at`, turned at random.
+template <class T>
+std::vector<Tri<T>> patch(int kind, std::mt19937_64& rng, const Vec3<double>& at, double size) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Vec3<double> n = Vec3<double>::from(test::random_unit<double>(rng));
+  const Vec3<double> h = std::abs(n.x) < 0.9 ? Vec3<double>{1, 0, 0} : Vec3<double>{0, 1, 0};
+  const Vec3<double> t0 = normalized(cross(h, n)), t1 = cross(n, t0);
+  const double radius = size * (1 + 20 * (u(rng) + 1)); // curvature of the cap
+  auto surface = [&](double x, double y) {
+    double z = 0;
+    if (kind == 1) z = (x * x + y * y) / (2 * radius); // a cap of a sphere
+    if (kind == 2) z = size * 0.3 * std::sin(7 * x / size) * std::cos(5 * y / size); // wavy
+    return at + t0 * x + t1 * y + n * z;
+  };
+  auto to_t = [](const Vec3<double>& v) { return Vec3<T>{T(v.x), T(v.y), T(v.z)}; };
+  std::vector<Tri<T>> tris;
+  for (int i = 0; i < 16; ++i) {
+    if (kind == 3) { // a random soup in a box
+      tris.push_back({to_t(at + Vec3<double>{u(rng), u(rng), u(rng)} * size),
+                      to_t(at + Vec3<double>{u(rng), u(rng), u(rng)} * size),
+                      to_t(at + Vec3<double>{u(rng), u(rng), u(rng)} * size)});
+      continue;
+    }
+    if (kind == 4) { // every corner the same point
+      tris.push_back({to_t(at), to_t(at), to_t(at)});
+      continue;
+    }
+    const double x0 = size * (i % 4 - 2) / 4, y0 = size * (i / 4 - 2) / 4, d = size / 4;
+    tris.push_back({to_t(surface(x0, y0)), to_t(surface(x0 + d, y0)), to_t(surface(x0, y0 + d))});
+  }
+  return tris;
+}
+
+template <class T, int K>
+void fit_child(NodeObbs<T, K>& o, int k, const std::vector<Tri<T>>& tris) {
+  Vec3<double> normal{0, 0, 0};
+  auto corner = [&](std::size_t j) {
+    const Vec3<T>& v = tris[j / 3][j % 3];
+    return Vec3<double>{double(v.x), double(v.y), double(v.z)};
+  };
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    normal = normal + cross(corner(3 * t + 1) - corner(3 * t), corner(3 * t + 2) - corner(3 * t));
+  o.fit(k, normal, tris.size() * 3, corner);
+}
+
+using LD = long double;
+
+/// Squared distance from p to x, in long double.
+template <class T> LD dist2_ld(const Vec3<T>& p, const Vec3<LD>& x) {
+  const LD dx = LD(p.x) - x.x, dy = LD(p.y) - x.y, dz = LD(p.z) - x.z;
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/// Points of the triangles (corners, centroids, and each triangle's point nearest to p, in long
+/// double): the bound must not exceed the distance to any of them.
+template <class T> LD nearest_sampled_dist2(const std::vector<Tri<T>>& tris, const Vec3<T>& p) {
+  LD best = std::numeric_limits<LD>::infinity();
+  auto ld = [](const Vec3<T>& v) { return Vec3<LD>{LD(v.x), LD(v.y), LD(v.z)}; };
+  for (const Tri<T>& t : tris) {
+    const Vec3<LD> a = ld(t[0]), b = ld(t[1]), c = ld(t[2]);
+    const Vec3<LD> cp = closest_point_triangle(ld(p), a, b, c).point;
+    for (const Vec3<LD>& x : {a, b, c, (a + b + c) / LD(3), cp})
+      best = std::min(best, dist2_ld(p, x));
+  }
+  return best;
+}
+
+/// The forms of `raise_dist2` this build and CPU can run.
+template <class T>
+std::vector<
+    std::pair<std::string, std::function<void(const NodeObbs<T, 4>&, const Vec3<T>&, T (&)[4])>>>
+forms() {
+  std::vector<
+      std::pair<std::string, std::function<void(const NodeObbs<T, 4>&, const Vec3<T>&, T(&)[4])>>>
+      f;
+  f.push_back({"generic", [](const NodeObbs<T, 4>& o, const Vec3<T>& p, T(&d2)[4]) {
+                 raise_dist2_generic(o, p, d2);
+               }});
+  f.push_back({"native", [](const NodeObbs<T, 4>& o, const Vec3<T>& p, T(&d2)[4]) {
+                 raise_dist2<native_isa>(o, p, d2);
+               }});
+#if EBGEOM_ISA_DISPATCH
+  if (int(detected_isa()) >= int(Isa::avx2))
+    f.push_back({"avx2", [](const NodeObbs<T, 4>& o, const Vec3<T>& p, T(&d2)[4]) {
+                   raise_dist2<Isa::avx2>(o, p, d2);
+                 }});
+#endif
+  return f;
+}
+} // namespace
+
+TYPED_TEST(NodeObbsTest, NeverExceedsTheDistanceToAnyPointOfTheLeaf) {
+  using T = TypeParam;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto fs = forms<T>();
+  int checked = 0, raised = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int kind = trial % 5;
+    const double size = std::pow(10.0, 3 * u(rng));                  // 1e-3 .. 1e3
+    const double offset = size * std::pow(10.0, 1.5 * (u(rng) + 1)); // up to 1000 sizes away
+    const Vec3<double> at = Vec3<double>::from(test::random_unit<double>(rng)) * offset;
+    const auto tris = patch<T>(kind, rng, at, size);
+    NodeObbs<T, 4> o;
+    o.clear();
+    const int k = trial % 4;
+    fit_child(o, k, tris);
+    std::vector<Vec3<T>> pts;
+    for (int i = 0; i < 60; ++i) { // near, far, and on the patch
+      const double s = i < 30 ? 2 * size : i < 50 ? 200 * size : 0;
+      Vec3<double> q = at + Vec3<double>{u(rng), u(rng), u(rng)} * s;
+      if (i >= 50) {
+        const Tri<T>& t = tris[std::size_t(i) % tris.size()];
+        const double w0 = (u(rng) + 1) / 2, w1 = (1 - w0) * (u(rng) + 1) / 2;
+        q = Vec3<double>::from(t[0]) * w0 + Vec3<double>::from(t[1]) * w1 +
+            Vec3<double>::from(t[2]) * (1 - w0 - w1);
+      }
+      pts.push_back({T(q.x), T(q.y), T(q.z)});
+    }
+    for (const Vec3<T>& p : pts) {
+      const LD ref = nearest_sampled_dist2(tris, p);
+      for (const auto& [name, f] : fs) {
+        T d2[4] = {T(0), T(0), T(0), T(0)};
+        f(o, p, d2);
+        for (int j = 0; j < 4; ++j) {
+          if (j == k) continue;
+          ASSERT_EQ(d2[j], T(0)) << name << ": a cleared child was raised";
+        }
+        ASSERT_LE(LD(d2[k]), ref) << name << " kind " << kind << " size " << size << " offset "
+                                  << offset << " p " << p;
+        ++checked;
+        raised += d2[k] > T(0);
+      }
+    }
+  }
+  EXPECT_GT(checked, 10000);
+  EXPECT_GT(raised, checked / 4); // a bound that is always 0 would pass the check above
+}
+
+TYPED_TEST(NodeObbsTest, IsTighterThanTheAxisAlignedBoxOnATiltedPatch) {
+  using T = TypeParam;
+  // A flat square in the plane x + y + z = 0, and a point 1 above its centre along the normal:
+  // its axis-aligned box reaches within 0.4 of the point, its oriented box no nearer than 1.
+  const Vec3<double> n = normalized(Vec3<double>{1, 1, 1});
+  const Vec3<double> a = normalized(Vec3<double>{1, -1, 0}), b = cross(n, a);
+  std::vector<Tri<T>> tris;
+  auto pt = [&](double x, double y) {
+    const Vec3<double> v = a * x + b * y;
+    return Vec3<T>{T(v.x), T(v.y), T(v.z)};
+  };
+  tris.push_back({pt(-1, -1), pt(1, -1), pt(1, 1)});
+  tris.push_back({pt(-1, -1), pt(1, 1), pt(-1, 1)});
+  NodeObbs<T, 4> o;
+  o.clear();
+  fit_child(o, 2, tris);
+  const Vec3<T> p{T(n.x), T(n.y), T(n.z)};
+  Aabb<T> box;
+  for (const auto& t : tris)
+    for (const auto& v : t) box.extend(v);
+  for (const auto& [name, f] : forms<T>()) {
+    T d2[4] = {T(0), T(0), box.distance2(p), T(0)};
+    EXPECT_LT(d2[2], T(0.2));
+    f(o, p, d2);
+    EXPECT_GT(d2[2], T(0.999)) << name;
+    EXPECT_LE(d2[2], T(1)) << name;
+  }
+}
+
+TYPED_TEST(NodeObbsTest, AZeroOrNonFiniteNormalGivesTheCoordinateAxes) {
+  using T = TypeParam;
+  NodeObbs<T, 4> o;
+  o.clear();
+  const Vec3<double> pts[2] = {{0, 0, 0}, {1, 2, 3}};
+  auto corner = [&](std::size_t j) { return pts[j]; };
+  o.fit(0, {0, 0, 0}, 2, corner);
+  o.fit(1, {std::nan(""), 0, 0}, 2, corner);
+  for (int k = 0; k < 2; ++k) {
+    T d2[4] = {T(0), T(0), T(0), T(0)};
+    raise_dist2_generic(o, Vec3<T>{T(3), T(2), T(3)}, d2); // 2 beyond x = 1
+    EXPECT_LE(d2[k], T(4));
+    EXPECT_GT(d2[k], T(3.999));
+  }
+}
