@@ -119,6 +119,13 @@ template <class T, int K> struct NodeObbs {
       if (double(ht[q]) < h[q] + margin)
         ht[q] = std::nextafter(ht[q], std::numeric_limits<T>::infinity());
     }
+    // A centre or extent beyond the range of T (a patch at the edge of it): no oriented box. A
+    // centre at infinity would make NaN distances even for points next to the patch.
+    if (!std::isfinite(T(ct.x)) || !std::isfinite(T(ct.y)) || !std::isfinite(T(ct.z)) ||
+        !std::isfinite(ht[0]) || !std::isfinite(ht[1]) || !std::isfinite(ht[2])) {
+      clear(k);
+      return;
+    }
     cx[k] = T(ct.x), cy[k] = T(ct.y), cz[k] = T(ct.z);
     ux[k] = T(r[0].x), uy[k] = T(r[0].y), uz[k] = T(r[0].z);
     vx[k] = T(r[1].x), vy[k] = T(r[1].y), vz[k] = T(r[1].z);
@@ -171,7 +178,7 @@ EBGEOM_FORCE_INLINE void raise_dist2_sse(const NodeObbs<float, 4>& o, const Vec3
                                        obb_gap2_sse(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
                             obb_gap2_sse(o.nx, o.ny, o.nz, o.hn, dx, dy, dz)),
                  _mm_set1_ps(obb_shrink<float>));
-  _mm_storeu_ps(d2, _mm_max_ps(_mm_loadu_ps(d2), s));
+  _mm_storeu_ps(d2, _mm_max_ps(s, _mm_loadu_ps(d2))); // a NaN s keeps d2, as std::max
 }
 #endif
 
@@ -201,7 +208,7 @@ EBGEOM_TARGET_AVX inline void raise_dist2_avx(const NodeObbs<double, 4>& o, cons
                                                 obb_gap2_avx(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
                                   obb_gap2_avx(o.nx, o.ny, o.nz, o.hn, dx, dy, dz)),
                     _mm256_set1_pd(obb_shrink<double>));
-  _mm256_storeu_pd(d2, _mm256_max_pd(_mm256_loadu_pd(d2), s));
+  _mm256_storeu_pd(d2, _mm256_max_pd(s, _mm256_loadu_pd(d2))); // a NaN s keeps d2
 }
 #endif
 } // namespace detail

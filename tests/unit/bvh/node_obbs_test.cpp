@@ -207,3 +207,28 @@ TYPED_TEST(NodeObbsTest, AZeroOrNonFiniteNormalGivesTheCoordinateAxes) {
     EXPECT_GT(d2[k], T(3.999));
   }
 }
+
+TEST(NodeObbsEdgeTest, APatchAtTheEdgeOfTheFloatRangeNeverGivesNaN) {
+  // Corners at the largest float: the oriented box's centre or extents may fall beyond the range
+  // of float. The box must then raise nothing rather than give NaN (which would drop the child).
+  const float m = std::numeric_limits<float>::max(), d = m * 1e-3f;
+  for (int variant = 0; variant < 3; ++variant) {
+    std::vector<Tri<float>> tris;
+    if (variant == 0) tris.push_back({Vec3<float>{m, m, m}, {m, m - d, m}, {m - d, m, m}});
+    if (variant == 1) tris.push_back({Vec3<float>{m, m, m}, {m - d, m - d, m}, {m - d, m, m - d}});
+    if (variant == 2) tris.push_back({Vec3<float>{-m, m, 0}, {m, -m, 0}, {m, m, 0}});
+    NodeObbs<float, 4> o;
+    o.clear();
+    fit_child(o, 1, tris);
+    for (const auto& [name, f] : forms<float>()) {
+      // The corners: from anywhere else near the patch, squared distances overflow float (as the
+      // axis-aligned box's do).
+      for (const Vec3<float>& p : tris[0]) {
+        float d2[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        f(o, p, d2);
+        EXPECT_FALSE(std::isnan(d2[1])) << name << " variant " << variant;
+        EXPECT_LE(LD(d2[1]), nearest_sampled_dist2(tris, p)) << name << " variant " << variant;
+      }
+    }
+  }
+}
