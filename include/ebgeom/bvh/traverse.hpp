@@ -89,81 +89,86 @@ template <class T> constexpr T prune_limit(T best2, T abs_slack = T(0)) noexcept
 }
 
 namespace detail {
-/// Monotone 32-bit key of a squared distance (>= 0): the bits of its float rounding without the
-/// sign (so -0 keys as +0), which order as unsigned integers as the values do (ties possible in
-/// double: the order only guides the search). Below 2^31, so a (key << 32 | k) pair orders the same
-/// as a signed and as an unsigned 64-bit integer.
-template <class T> inline std::uint32_t distance_key(T d2) noexcept {
+/// The low bits of a child key that hold the child (`order_children`): enough for K children.
+template <int K>
+inline constexpr std::uint32_t child_bits = K <= 2   ? 1u
+                                            : K <= 4 ? 2u
+                                            : K <= 8 ? 3u
+                                                     : 4u;
+template <int K> inline constexpr std::uint32_t child_mask = (1u << child_bits<K>)-1u;
+
+/// Key of child `k` at squared distance `d2` (>= 0): the bits of d2's float rounding without the
+/// sign (so -0 keys as +0), whose lowest `child_bits<K>` bits are replaced by k. Such keys order as
+/// unsigned integers as the distances do, except that distances within a few float ulps of each
+/// other may swap (the order only guides the search; ties at equal keys keep the child order).
+/// Below 2^31, so every included key is below `excluded_key`.
+template <int K, class T> inline std::uint32_t child_key(T d2, int k) noexcept {
   const float f = float(d2);
   std::uint32_t u;
   std::memcpy(&u, &f, sizeof u);
-  return u & 0x7fffffffu;
+  return (u & 0x7fffffffu & ~child_mask<K>) | std::uint32_t(k);
 }
 
-/// The key of a child that `order_children` leaves out: above every (distance key << 32 | k).
-inline constexpr std::uint64_t excluded_key = 0x7fffffffffffffffu;
+/// The key of a child that `order_children` leaves out: above every included key.
+inline constexpr std::uint32_t excluded_key = 0xffffffffu;
 
 #if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
-/// One layer of compare-exchanges: each lane meets `partner` (its pair's other key); the lanes
-/// whose 32-bit halves are set in `HiDwords` keep the larger key, the others the smaller.
-template <int HiDwords>
-EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256i compare_exchange4(__m256i x,
-                                                                 __m256i partner) noexcept {
-  const __m256i gt = _mm256_cmpgt_epi64(x, partner);
-  const __m256i lo = _mm256_blendv_epi8(x, partner, gt), hi = _mm256_blendv_epi8(partner, x, gt);
-  return _mm256_blend_epi32(lo, hi, HiDwords);
+/// One layer of compare-exchanges on four unsigned keys: each lane meets `partner` (its pair's
+/// other key); the lanes set in `HiWords` (a 16-bit blend mask) keep the larger key, the others
+/// the smaller. One cycle each for the min, max and blend.
+template <int HiWords>
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m128i compare_exchange4(__m128i x,
+                                                                 __m128i partner) noexcept {
+  return _mm_blend_epi16(_mm_min_epu32(x, partner), _mm_max_epu32(x, partner), HiWords);
 }
 
-/// Sorts four keys in one AVX2 register (`order_children` for K = 4): the keys are built as in the
-/// scalar code (float rounding, sign cleared, child in the low bits) and sorted by the optimal
-/// 4-input network (0,1)(2,3) (0,2)(1,3) (1,2), each layer one permute, one compare and three
-/// blends. Identical keys and order to the scalar network (all keys are distinct).
-EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256i sort4_keys(__m256i v) noexcept {
-  v = compare_exchange4<0xcc>(v, _mm256_permute4x64_epi64(v, 0xb1));    // (0,1) (2,3): [1 0 3 2]
-  v = compare_exchange4<0xf0>(v, _mm256_permute4x64_epi64(v, 0x4e));    // (0,2) (1,3): [2 3 0 1]
-  return compare_exchange4<0x30>(v, _mm256_permute4x64_epi64(v, 0xd8)); // (1,2): [0 2 1 3]
+/// Sorts four 32-bit keys in one register (`order_children` for K = 4) by the optimal 4-input
+/// network (0,1)(2,3) (0,2)(1,3) (1,2), each layer one shuffle, a min, a max and a blend (about
+/// 9 cycles in all, a third of the same network on 64-bit keys). Identical keys and order to the
+/// scalar network (all keys are distinct).
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m128i sort4_keys(__m128i v) noexcept {
+  v = compare_exchange4<0xcc>(v, _mm_shuffle_epi32(v, 0xb1));    // (0,1) (2,3): [1 0 3 2]
+  v = compare_exchange4<0xf0>(v, _mm_shuffle_epi32(v, 0x4e));    // (0,2) (1,3): [2 3 0 1]
+  return compare_exchange4<0x30>(v, _mm_shuffle_epi32(v, 0xd8)); // (1,2): [0 2 1 3]
 }
 
-/// The four children's keys: `distance_key(d2[k]) << 32 | k` where `in`, else `excluded_key`.
-EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256i child_keys4(__m128 f, __m256i in) noexcept {
-  const __m128i bits = _mm_and_si128(_mm_castps_si128(f), _mm_set1_epi32(0x7fffffff));
-  const __m256i k = _mm256_or_si256(_mm256_slli_epi64(_mm256_cvtepu32_epi64(bits), 32),
-                                    _mm256_setr_epi64x(0, 1, 2, 3));
-  return _mm256_blendv_epi8(_mm256_set1_epi64x(std::int64_t(excluded_key)), k, in);
-}
-
-EBGEOM_FORCE_INLINE int bit_count4(int b) noexcept {
-  return (b & 1) + ((b >> 1) & 1) + ((b >> 2) & 1) + ((b >> 3) & 1);
+/// Sorts the four children's keys (`child_key<4>` of the distances `f` where `in`, else
+/// `excluded_key`) into `key`.
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE void order_keys4(__m128 f, __m128i in,
+                                                        std::uint32_t (&key)[4]) noexcept {
+  const __m128i bits = _mm_or_si128(_mm_and_si128(_mm_castps_si128(f), _mm_set1_epi32(0x7ffffffc)),
+                                    _mm_setr_epi32(0, 1, 2, 3));
+  const __m128i k = _mm_blendv_epi8(_mm_set1_epi32(-1), bits, in);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(key), sort4_keys(k));
 }
 
 // Not forced inline: they inline into the dispatched AVX2 / AVX-512 kernels (or into every
 // caller when the translation unit targets AVX2).
 EBGEOM_TARGET_AVX2 inline int order_children4(const double (&d2)[4], double lim,
-                                              std::uint64_t (&key)[4]) noexcept {
+                                              std::uint32_t (&key)[4]) noexcept {
   const __m256d d = _mm256_loadu_pd(d2);
   const __m256d in = _mm256_cmp_pd(d, _mm256_set1_pd(lim), _CMP_LT_OQ);
-  const __m256i k = child_keys4(_mm256_cvtpd_ps(d), _mm256_castpd_si256(in));
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(key), sort4_keys(k));
-  return bit_count4(_mm256_movemask_pd(in));
+  // The all-ones lanes of `in` (a quiet NaN) convert to all-ones floats, and zeros to zeros.
+  order_keys4(_mm256_cvtpd_ps(d), _mm_castps_si128(_mm256_cvtpd_ps(in)), key);
+  return _mm_popcnt_u32(unsigned(_mm256_movemask_pd(in)));
 }
 
 EBGEOM_TARGET_AVX2 inline int order_children4(const float (&d2)[4], float lim,
-                                              std::uint64_t (&key)[4]) noexcept {
+                                              std::uint32_t (&key)[4]) noexcept {
   const __m128 d = _mm_loadu_ps(d2);
   const __m128 in = _mm_cmplt_ps(d, _mm_set1_ps(lim));
-  const __m256i k = child_keys4(d, _mm256_cvtepi32_epi64(_mm_castps_si128(in)));
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(key), sort4_keys(k));
-  return bit_count4(_mm_movemask_ps(in));
+  order_keys4(d, _mm_castps_si128(in), key);
+  return _mm_popcnt_u32(unsigned(_mm_movemask_ps(in)));
 }
 #endif
 
-/// Sorts the children with `d2[k] < lim` nearest first into `key` ((distance key << 32) | k, the
-/// others last as `excluded_key`) with a branch-free odd-even transposition network, and returns
-/// their count. Replaces an insertion sort whose data-dependent branches mispredicted at every
-/// node. K = 4 on instruction set I with AVX2 takes the vector network above (same keys, same
-/// order).
+/// Sorts the children with `d2[k] < lim` nearest first into `key` (`child_key<K>`, the others last
+/// as `excluded_key`; `key[j] & child_mask<K>` is the child) with a branch-free odd-even
+/// transposition network, and returns their count. Replaces an insertion sort whose
+/// data-dependent branches mispredicted at every node. K = 4 on instruction set I with AVX2 takes
+/// the vector network above (same keys, same order).
 template <class T, int K, Isa I = native_isa>
-inline int order_children(const T (&d2)[K], T lim, std::uint64_t (&key)[K]) noexcept {
+inline int order_children(const T (&d2)[K], T lim, std::uint32_t (&key)[K]) noexcept {
 #if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
   if constexpr (I >= Isa::avx2 && K == 4 && (std::is_same_v<T, float> || std::is_same_v<T, double>))
     return order_children4(d2, lim, key);
@@ -172,11 +177,11 @@ inline int order_children(const T (&d2)[K], T lim, std::uint64_t (&key)[K]) noex
   for (int k = 0; k < K; ++k) {
     const bool in = d2[k] < lim;
     m += in;
-    key[k] = in ? (std::uint64_t(distance_key(d2[k])) << 32) | std::uint64_t(k) : excluded_key;
+    key[k] = in ? child_key<K>(d2[k], k) : excluded_key;
   }
   for (int r = 0; r < K; ++r)
     for (int i = r & 1; i + 1 < K; i += 2) {
-      const std::uint64_t a = key[i], b = key[i + 1];
+      const std::uint32_t a = key[i], b = key[i + 1];
       key[i] = a < b ? a : b;
       key[i + 1] = a < b ? b : a;
     }
@@ -240,15 +245,16 @@ void nearest(const WideBvh<T, K, BV>& bvh, const Vec3<T>& p, T& best2, LeafFn&& 
       // (distance, child) keys (`order_children`); the nearest is expanded, the others pushed
       // far to near.
       const T lim = prune_limit(best2, abs_slack);
-      std::uint64_t key[K];
+      std::uint32_t key[K];
       const int m = detail::order_children<T, K, I>(d2, lim, key);
       if (m > 0) {
-        for (int j = 0; j < m; ++j) prefetch(n.child[key[j] & 0xffu]);
+        constexpr std::uint32_t child = detail::child_mask<K>;
+        for (int j = 0; j < m; ++j) prefetch(n.child[key[j] & child]);
         for (int j = m - 1; j > 0; --j) {
-          const int k = int(key[j] & 0xffu);
+          const int k = int(key[j] & child);
           todo.push({n.child[k], d2[k]});
         }
-        cur = n.child[key[0] & 0xffu];
+        cur = n.child[key[0] & child];
         continue;
       }
     }

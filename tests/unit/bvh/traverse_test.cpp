@@ -235,7 +235,7 @@ template <class T, int K> void order_children_matches_a_sort(std::mt19937_64& rn
     T d2[K];
     for (int k = 0; k < K; ++k) d2[k] = pool[pick(rng)]; // ties, zeros and empty slots
     const T lim = round % 3 == 0 ? std::numeric_limits<T>::infinity() : T(1.5);
-    std::uint64_t key[K];
+    std::uint32_t key[K];
     const int m = bvh::detail::order_children<T, K>(d2, lim, key);
     std::vector<std::pair<T, int>> want;
     for (int k = 0; k < K; ++k)
@@ -243,7 +243,7 @@ template <class T, int K> void order_children_matches_a_sort(std::mt19937_64& rn
     std::sort(want.begin(), want.end());
     ASSERT_EQ(m, int(want.size()));
     for (int j = 0; j < m; ++j) {
-      const int k = int(key[j] & 0xffu);
+      const int k = int(key[j] & bvh::detail::child_mask<K>);
       ASSERT_EQ(d2[k], want[std::size_t(j)].first) << "K " << K << " position " << j;
       ASSERT_EQ(k, want[std::size_t(j)].second) << "ties keep the child order";
     }
