@@ -19,11 +19,11 @@
 /// that never raises anything (zero axes, infinite extents).
 ///
 /// Rounding. The value is a lower bound of the exact squared distance to every triangle of the
-/// leaf, whatever the point (see `fit`): the axes are rounded to T and shortened so that the
+/// child, whatever the point (see `fit`): the axes are rounded to T and shortened so that the
 /// rounded frame never lengthens a vector; the half extents are computed in double from the
 /// rounded frame, rounded up and widened by 32 ulps of the box's size, which covers the absolute
 /// part of the error of `raise_dist2` (one subtraction per coordinate, a three-term dot product);
-/// and the result is scaled by 1 - 64 eps, which covers the relative part. So a leaf holding the
+/// and the result is scaled by 1 - 64 eps, which covers the relative part. So a child holding the
 /// nearest triangle is never skipped on this bound, as on an exact box distance.
 
 #include <algorithm>
