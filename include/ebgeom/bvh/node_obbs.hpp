@@ -21,10 +21,11 @@
 /// Rounding. The value is a lower bound of the exact squared distance to every triangle of the
 /// child, whatever the point (see `fit`): the axes are rounded to T and shortened so that the
 /// rounded frame never lengthens a vector; the half extents are computed in double from the
-/// rounded frame, rounded up and widened by 32 ulps of the box's size, which covers the absolute
-/// part of the error of `raise_dist2` (one subtraction per coordinate, a three-term dot product);
-/// and the result is scaled by 1 - 64 eps, which covers the relative part. So a child holding the
-/// nearest triangle is never skipped on this bound, as on an exact box distance.
+/// rounded frame (widened by the rounding of that computation, `fit_from_sums`), rounded up and
+/// widened by 32 ulps of the box's size, which covers the absolute part of the error of
+/// `raise_dist2` (one subtraction per coordinate, a three-term dot product); and the result is
+/// scaled by 1 - 64 eps, which covers the relative part. So a child holding the nearest triangle
+/// is never skipped on this bound, as on an exact box distance.
 
 #include <algorithm>
 #include <cmath>
@@ -43,6 +44,46 @@
 EBGEOM_BEGIN_EXACT_FP
 
 namespace ebgeom::bvh {
+
+/// What `NodeObbs::fit` needs to orient a box, summed over a patch's corners: their count, sum
+/// and second moments about a fixed reference point (any point near the patch; the mesh's centre),
+/// and the patch's summed normal. Sums of two patches add up (`merge`), so the boxes of every
+/// subtree of a BVH take one pass over its corners each for the orientation.
+struct PatchStats {
+  Vec3<double> ref{0, 0, 0};
+  double n = 0;
+  Vec3<double> sum{0, 0, 0};
+  double sxx = 0, syy = 0, szz = 0, sxy = 0, sxz = 0, syz = 0;
+  Vec3<double> normal{0, 0, 0};
+
+  void add_point(const Vec3<double>& x) noexcept {
+    const Vec3<double> d = x - ref;
+    n += 1;
+    sum = sum + d;
+    sxx += d.x * d.x, syy += d.y * d.y, szz += d.z * d.z;
+    sxy += d.x * d.y, sxz += d.x * d.z, syz += d.y * d.z;
+  }
+  /// A triangle: its corners and its (area-weighted) normal.
+  void add_triangle(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c) noexcept {
+    add_point(a), add_point(b), add_point(c);
+    normal = normal + cross(b - a, c - a);
+  }
+  /// Adds the sums of `o` (same reference point).
+  void merge(const PatchStats& o) noexcept {
+    n += o.n;
+    sum = sum + o.sum;
+    sxx += o.sxx, syy += o.syy, szz += o.szz, sxy += o.sxy, sxz += o.sxz, syz += o.syz;
+    normal = normal + o.normal;
+  }
+  /// n times the covariance of the corners along unit vectors a and b: sum (a·d)(b·d) - n
+  /// (a·m)(b·m) with m the mean offset d.
+  double scatter(const Vec3<double>& a, const Vec3<double>& b) const noexcept {
+    const double s = a.x * (b.x * sxx + b.y * sxy + b.z * sxz) +
+                     a.y * (b.x * sxy + b.y * syy + b.z * syz) +
+                     a.z * (b.x * sxz + b.y * syz + b.z * szz);
+    return n > 0 ? s - dot(a, sum) * dot(b, sum) / n : 0;
+  }
+};
 
 /// Oriented boxes of the K children of one node (see the file comment).
 template <class T, int K> struct NodeObbs {
@@ -68,25 +109,30 @@ template <class T, int K> struct NodeObbs {
   /// projected on the tangent plane.
   template <class CornerFn>
   void fit(int k, const Vec3<double>& normal, std::size_t n, CornerFn&& corner) noexcept {
+    PatchStats st;
+    if (n > 0) st.ref = corner(0);
+    for (std::size_t i = 0; i < n; ++i) st.add_point(corner(i));
+    st.normal = normal;
+    fit_from_sums(k, st, n, corner);
+  }
+
+  /// As above, oriented by the sums `st` of the same corners (`PatchStats`): the box then takes
+  /// two passes over the corners, for its extents. Any `st` gives a box that holds the corners;
+  /// the sums only choose its axes.
+  template <class CornerFn>
+  void fit_from_sums(int k, const PatchStats& st, std::size_t n, CornerFn&& corner) noexcept {
     Vec3<double> a[3]; // u, v, n
-    const double len = norm(normal);
+    const double len = norm(st.normal);
     if (!(len > 0) || !std::isfinite(len)) {
       a[0] = {1, 0, 0}, a[1] = {0, 1, 0}, a[2] = {0, 0, 1};
     } else {
-      a[2] = normal / len;
+      a[2] = st.normal / len;
       const Vec3<double> h = std::abs(a[2].x) < 0.9 ? Vec3<double>{1, 0, 0} : Vec3<double>{0, 1, 0};
       const Vec3<double> t0 = normalized(cross(h, a[2])), t1 = cross(a[2], t0);
-      // Principal direction in the plane: angle of the 2x2 covariance's main axis.
-      Vec3<double> mean{0, 0, 0};
-      for (std::size_t i = 0; i < n; ++i) mean = mean + corner(i);
-      mean = mean / double(n);
-      double sxx = 0, syy = 0, sxy = 0;
-      for (std::size_t i = 0; i < n; ++i) {
-        const Vec3<double> d = corner(i) - mean;
-        const double x = dot(d, t0), y = dot(d, t1);
-        sxx += x * x, syy += y * y, sxy += x * y;
-      }
-      const double th = 0.5 * std::atan2(2 * sxy, sxx - syy);
+      // Principal direction in the plane: angle of the 2x2 covariance's main axis (the axes
+      // stay t0, t1 when the sums are not finite).
+      const double sxx = st.scatter(t0, t0), syy = st.scatter(t1, t1), sxy = st.scatter(t0, t1);
+      const double th = std::isfinite(sxx + syy + sxy) ? 0.5 * std::atan2(2 * sxy, sxx - syy) : 0.0;
       a[0] = t0 * std::cos(th) + t1 * std::sin(th);
       a[1] = cross(a[2], a[0]);
     }
@@ -96,8 +142,11 @@ template <class T, int K> struct NodeObbs {
     for (int q = 0; q < 3; ++q)
       r[q] = {double(T(a[q].x * shorten)), double(T(a[q].y * shorten)),
               double(T(a[q].z * shorten))};
-    // Extents in the rounded frame, then the centre (rounded to T) and half extents around it.
-    double lo[3], hi[3];
+    // Extents in the rounded frame (one pass), then the centre (rounded to T) and the half
+    // extents around it. Each computed projection r·x is within 3.01 · 2^-53 · |x|_1 of the exact
+    // one (|r| <= 1), and each subtraction within 2^-53 of its result: widening by 2^-50 of the
+    // largest |x|_1 (corners and centre) and by 2^-50 of the half extent covers both.
+    double lo[3], hi[3], big = 0;
     for (int q = 0; q < 3; ++q) lo[q] = std::numeric_limits<double>::infinity(), hi[q] = -lo[q];
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3<double> x = corner(i);
@@ -105,14 +154,16 @@ template <class T, int K> struct NodeObbs {
         const double t = dot(r[q], x);
         lo[q] = std::min(lo[q], t), hi[q] = std::max(hi[q], t);
       }
+      big = std::max(big, std::abs(x.x) + std::abs(x.y) + std::abs(x.z));
     }
     Vec3<double> c{0, 0, 0};
     for (int q = 0; q < 3; ++q) c = c + r[q] * (0.5 * (lo[q] + hi[q]));
     const Vec3<double> ct{double(T(c.x)), double(T(c.y)), double(T(c.z))};
-    double h[3] = {0, 0, 0};
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec3<double> d = corner(i) - ct;
-      for (int q = 0; q < 3; ++q) h[q] = std::max(h[q], std::abs(dot(r[q], d)));
+    big = std::max(big, std::abs(ct.x) + std::abs(ct.y) + std::abs(ct.z));
+    double h[3];
+    for (int q = 0; q < 3; ++q) {
+      const double tc = dot(r[q], ct);
+      h[q] = std::max({hi[q] - tc, tc - lo[q], 0.0}) * (1 + 0x1p-50) + 0x1p-50 * big;
     }
     const double margin = 32 * double(std::numeric_limits<T>::epsilon()) * (h[0] + h[1] + h[2]);
     T ht[3];

@@ -163,6 +163,86 @@ TYPED_TEST(NodeObbsTest, NeverExceedsTheDistanceToAnyPointOfTheLeaf) {
   EXPECT_GT(raised, checked / 4); // a bound that is always 0 would pass the check above
 }
 
+TYPED_TEST(NodeObbsTest, AnySumsGiveABoxThatHoldsThePatch) {
+  // The sums only orient the box (`fit_from_sums`): wrong, extreme or NaN sums still give a box
+  // around the corners, so a bound that never exceeds the distance to the patch.
+  using T = TypeParam;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double nan = std::nan("");
+  int checked = 0, raised = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const double size = std::pow(10.0, 2 * u(rng));
+    const Vec3<double> at = Vec3<double>::from(test::random_unit<double>(rng)) * (10 * size);
+    const auto tris = patch<T>(trial % 4, rng, at, size);
+    PatchStats st;
+    st.ref = Vec3<double>{u(rng), u(rng), u(rng)} * (trial % 3 == 0 ? 1e300 : size);
+    st.n = trial % 5 == 0 ? 0 : 1 + 100 * (u(rng) + 1);
+    st.sum = Vec3<double>{u(rng), u(rng), u(rng)} * (trial % 7 == 0 ? nan : 1e3);
+    st.sxx = trial % 2 ? -1e200 : u(rng), st.syy = u(rng), st.szz = u(rng);
+    st.sxy = trial % 11 == 0 ? nan : u(rng), st.sxz = u(rng), st.syz = u(rng);
+    st.normal = trial % 6 == 0 ? Vec3<double>{0, 0, 0} : Vec3<double>{u(rng), u(rng), u(rng)};
+    NodeObbs<T, 4> o;
+    o.clear();
+    o.fit_from_sums(1, st, tris.size() * 3, [&](std::size_t j) {
+      const Vec3<T>& v = tris[j / 3][j % 3];
+      return Vec3<double>{double(v.x), double(v.y), double(v.z)};
+    });
+    for (int i = 0; i < 60; ++i) { // near, far, and on the patch
+      const double s = i < 20 ? 2 * size : 100 * size;
+      Vec3<double> q = at + Vec3<double>{u(rng), u(rng), u(rng)} * s;
+      if (i >= 40) {
+        const Tri<T>& t = tris[std::size_t(i) % tris.size()];
+        const double w0 = (u(rng) + 1) / 2, w1 = (1 - w0) * (u(rng) + 1) / 2;
+        q = Vec3<double>::from(t[0]) * w0 + Vec3<double>::from(t[1]) * w1 +
+            Vec3<double>::from(t[2]) * (1 - w0 - w1);
+      }
+      const Vec3<T> p{T(q.x), T(q.y), T(q.z)};
+      const LD ref = nearest_sampled_dist2(tris, p);
+      for (const auto& [name, f] : forms<T>()) {
+        T d2[4] = {T(0), T(0), T(0), T(0)};
+        f(o, p, d2);
+        ASSERT_FALSE(std::isnan(d2[1])) << name << " trial " << trial;
+        ASSERT_LE(LD(d2[1]), ref) << name << " trial " << trial << " p " << p;
+        ++checked;
+        raised += d2[1] > T(0);
+      }
+    }
+  }
+  EXPECT_GT(checked, 3000);
+  EXPECT_GT(raised, checked / 4); // boxes that raise nothing would pass the check above
+}
+
+TEST(PatchStatsTest, MergedSumsEqualOnePassOverAllCorners) {
+  // Two halves merged give the sums of the whole (up to rounding), and `scatter` is n times the
+  // covariance of the corners along two directions, computed here about their mean directly.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Vec3<double> ref{100, -50, 20};
+  std::vector<Vec3<double>> pts;
+  for (int i = 0; i < 30; ++i)
+    pts.push_back(Vec3<double>{100 + 3 * u(rng), -50 + u(rng), 20 + 0.1 * u(rng)});
+  PatchStats all, a, b;
+  all.ref = a.ref = b.ref = ref;
+  for (int t = 0; t < 10; ++t) {
+    all.add_triangle(pts[3 * t], pts[3 * t + 1], pts[3 * t + 2]);
+    (t < 4 ? a : b).add_triangle(pts[3 * t], pts[3 * t + 1], pts[3 * t + 2]);
+  }
+  a.merge(b);
+  Vec3<double> mean{0, 0, 0};
+  for (const auto& x : pts) mean = mean + x / 30.0;
+  const Vec3<double> dirs[3] = {{1, 0, 0}, normalized(Vec3<double>{1, 2, 3}), {0, 0, 1}};
+  for (const Vec3<double>& d0 : dirs)
+    for (const Vec3<double>& d1 : dirs) {
+      double direct = 0;
+      for (const auto& x : pts) direct += dot(d0, x - mean) * dot(d1, x - mean);
+      EXPECT_NEAR(all.scatter(d0, d1), direct, 1e-9 * (1 + std::abs(direct)));
+      EXPECT_NEAR(a.scatter(d0, d1), direct, 1e-9 * (1 + std::abs(direct)));
+    }
+  EXPECT_EQ(a.n, 30);
+  EXPECT_NEAR(norm(a.normal - all.normal), 0, 1e-12 * norm(all.normal));
+}
+
 TYPED_TEST(NodeObbsTest, IsTighterThanTheAxisAlignedBoxOnATiltedPatch) {
   using T = TypeParam;
   // A flat square in the plane x + y + z = 0, and a point 1 above its centre along the normal:
