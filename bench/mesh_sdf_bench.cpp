@@ -9,7 +9,8 @@
 //   cmake --build --preset bench --target ebgeom_bench_mesh_sdf_bench
 //   build/bench/bench/ebgeom_bench_mesh_sdf_bench MESH | --generate N
 //       [--points N=1000000] [--reps R=5] [--precision float|double|both] [--threads T=2]
-//       [--check M=20000] [--cgal-points K=100000] [--grid N] [--json] [--json-file PATH]
+//       [--check M=20000] [--cgal-points K=100000] [--grid N] [--bands] [--json]
+//       [--json-file PATH]
 //
 // For the mesh: parse time (io::read_mesh) or generation time, TriangleMesh build time. For each
 // method: build time, memory, and query throughput (median of R runs) over N uniform random points
@@ -24,6 +25,10 @@
 // rounds as the peers: one query per point (`ebgeom`), the batch path `evaluate` on the points
 // (`ebgeom-batch`) and the grid path `sample_grid`, one 8^3 tile at a time (`ebgeom-tile`). All
 // points are checked (the tile and batch paths must equal the per-point queries bit for bit).
+//
+// --bands: after the main rounds, ebgeom and fcpw (one thread) are timed again on the points of
+// each band of |S| (ebgeom's answer) in units of the points' box diagonal, the two methods
+// alternately in each of R rounds: where on the distance range one is faster than the other.
 
 #include <algorithm>
 #include <array>
@@ -35,6 +40,7 @@
 #include <cstring>
 #include <ctime>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <malloc.h>
 #include <memory>
@@ -124,6 +130,7 @@ struct Options {
   std::size_t cgal_points = 100000; // CGAL is timed on the first K points (it is slow)
   std::size_t grid = 0; // > 0: the grid^3 cell centres of the box instead of random points
   bool run_float = false, run_double = true;
+  bool bands = false; // time ebgeom and fcpw per band of distance (see the file comment)
   bool json = false;
   std::string json_file; // also write the JSON object there (text still goes to stdout)
 };
@@ -298,10 +305,19 @@ template <class T> Result<PolygonSoup<T>> load(const Options& o, MeshInfo& info)
   return std::move(*r);
 }
 
+// One band of `--bands`: the points with lo <= |S| / diagonal < hi, and each round's one-thread
+// throughput of ebgeom and fcpw on them.
+struct Band {
+  double lo = 0, hi = 0;
+  std::size_t points = 0;
+  std::vector<double> ebgeom_qps, fcpw_qps;
+};
+
 struct PrecisionRun {
   std::string precision;
   MeshInfo mesh;
   std::vector<Row> rows;
+  std::vector<Band> bands; // `--bands`
   std::string error;
 };
 
@@ -604,6 +620,46 @@ template <class T> PrecisionRun run_precision(const Options& o) {
 
   for (std::size_t k = 0; k < sorted_out.size(); ++k) outs[7][sorted_order[k]] = sorted_out[k];
 
+#ifdef EBGEOM_BENCH_HAVE_FCPW
+  if (o.bands && sdf && fcpw && !outs[0].empty()) {
+    Aabb<double> pbox;
+    for (const Vec3<T>& p : pts) pbox.extend(Vec3<double>::from(p));
+    const double diag = norm(pbox.extent());
+    const double edges[] = {
+        0, 0.01, 0.025, 0.05, 0.1, 0.2, std::numeric_limits<double>::infinity()};
+    const std::size_t nb = std::size(edges) - 1;
+    std::vector<std::vector<Vec3<T>>> band_pts(nb);
+    for (std::size_t i = 0; i < outs[0].size(); ++i) {
+      const double d = std::abs(double(outs[0][i])) / diag;
+      for (std::size_t b = 0; b < nb; ++b)
+        if (d >= edges[b] && d < edges[b + 1]) band_pts[b].push_back(pts[i]);
+    }
+    std::vector<std::vector<T>> band_out(2 * nb);
+    std::vector<Pass> band_passes;
+    const MeshSdf<T>* s = sdf.get();
+    const ebgeom_bench::FcpwPeer* f = fcpw.get();
+    for (std::size_t b = 0; b < nb; ++b) {
+      Band band;
+      band.lo = edges[b], band.hi = edges[b + 1], band.points = band_pts[b].size();
+      run.bands.push_back(band);
+      band_passes.push_back(make_pass([s](const Vec3<T>& p) { return (*s)(p); }, band_pts[b],
+                                      band.points, band_out[2 * b]));
+      band_passes.push_back(make_pass(
+          [f](const Vec3<T>& p) {
+            return T(f->signed_distance(float(p.x), float(p.y), float(p.z)));
+          },
+          band_pts[b], band.points, band_out[2 * b + 1]));
+    }
+    for (int r = 0; r < o.reps; ++r)
+      for (std::size_t b = 0; b < nb; ++b) {
+        if (run.bands[b].points == 0) continue;
+        const double n = double(run.bands[b].points);
+        run.bands[b].ebgeom_qps.push_back(n / band_passes[2 * b](1));
+        run.bands[b].fcpw_qps.push_back(n / band_passes[2 * b + 1](1));
+      }
+  }
+#endif
+
   // Agreement with the reference on the first points (every point for the batch path).
   for (std::size_t k = 0; k < run.rows.size(); ++k) {
     Row& row = run.rows[k];
@@ -715,6 +771,21 @@ void print_text(const Options& o, const std::vector<PrecisionRun>& runs) {
                     "", r.reference.c_str(), r.sign_diff_ref_wins, r.method.c_str(),
                     r.sign_diff_peer_wins);
     }
+    if (!run.bands.empty()) {
+      std::printf("bands of |S| / diagonal of the points' box (one thread, ebgeom and fcpw "
+                  "alternately, medians of %d rounds):\n",
+                  o.reps);
+      std::printf("  %-13s %9s %7s %12s %12s %14s\n", "band", "points", "share", "ebgeom kq/s",
+                  "fcpw kq/s", "ebgeom / fcpw");
+      for (const Band& b : run.bands) {
+        char name[32];
+        std::snprintf(name, sizeof name, std::isfinite(b.hi) ? "%.3f-%.3f" : "%.3f-", b.lo, b.hi);
+        std::printf("  %-13s %9zu %6.1f%% %12.1f %12.1f %14.2f\n", name, b.points,
+                    100.0 * double(b.points) / double(std::max<std::size_t>(o.points, 1)),
+                    qps(b.ebgeom_qps) / 1e3, qps(b.fcpw_qps) / 1e3,
+                    paired_ratio(b.ebgeom_qps, b.fcpw_qps));
+      }
+    }
     for (const char* name : {"ebgeom", "ebgeom-batch", "ebgeom-tile"}) {
       const Row* eb = find(run, name);
       if (!eb) continue;
@@ -806,6 +877,17 @@ nlohmann::json to_json(const Options& o, const std::vector<PrecisionRun>& runs) 
       }
       jr[std::string("ratios_") + name + "_over_peer"] = ratios;
     }
+    if (!run.bands.empty()) {
+      jr["bands"] = nlohmann::json::array();
+      for (const Band& b : run.bands)
+        jr["bands"].push_back(
+            {{"lo", b.lo},
+             {"hi", std::isfinite(b.hi) ? nlohmann::json(b.hi) : nullptr},
+             {"points", b.points},
+             {"ebgeom_qps_1_runs", b.ebgeom_qps},
+             {"fcpw_qps_1_runs", b.fcpw_qps},
+             {"ebgeom_over_fcpw_paired", paired_ratio(b.ebgeom_qps, b.fcpw_qps)}});
+    }
     j["runs"].push_back(jr);
   }
   return j;
@@ -817,7 +899,7 @@ int usage(const char* argv0) {
                "usage: %s MESH | --generate N  [--points N=1000000] [--reps R=5]\n"
                "       [--precision float|double|both] [--threads T=2] [--check M=20000] "
                "[--cgal-points K=100000] [--grid N]\n"
-               "       [--json] [--json-file PATH]\n",
+               "       [--bands] [--json] [--json-file PATH]\n",
                argv0);
   return 2;
 }
@@ -833,6 +915,8 @@ int main(int argc, char** argv) {
     const char* v = nullptr;
     if (a == "--json") {
       o.json = true;
+    } else if (a == "--bands") {
+      o.bands = true;
     } else if (a == "--points" && (v = next())) {
       o.points = std::strtoull(v, nullptr, 10);
     } else if (a == "--reps" && (v = next())) {
