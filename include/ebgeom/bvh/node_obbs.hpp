@@ -47,8 +47,8 @@ namespace ebgeom::bvh {
 
 /// What `NodeObbs::fit` needs to orient a box, summed over a patch's corners: their count, sum
 /// and second moments about a fixed reference point (any point near the patch; the mesh's centre),
-/// and the patch's summed normal. Sums of two patches add up (`merge`), so the boxes of every
-/// subtree of a BVH take one pass over its corners each for the orientation.
+/// and the patch's summed normal. Sums of two patches add up (`merge`): the subtrees of a BVH get
+/// theirs from their children's, with one pass over the mesh in all.
 struct PatchStats {
   Vec3<double> ref{0, 0, 0};
   double n = 0;
@@ -117,8 +117,8 @@ template <class T, int K> struct NodeObbs {
   }
 
   /// As above, oriented by the sums `st` of the same corners (`PatchStats`): the box then takes
-  /// two passes over the corners, for its extents. Any `st` gives a box that holds the corners;
-  /// the sums only choose its axes.
+  /// one pass over the corners, for its extents. Any `st` gives a box that holds the corners; the
+  /// sums only choose its axes.
   template <class CornerFn>
   void fit_from_sums(int k, const PatchStats& st, std::size_t n, CornerFn&& corner) noexcept {
     Vec3<double> a[3]; // u, v, n
