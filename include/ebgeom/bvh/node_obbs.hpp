@@ -19,13 +19,13 @@
 /// that never raises anything (zero axes, infinite extents).
 ///
 /// Rounding. The value is a lower bound of the exact squared distance to every triangle of the
-/// child, whatever the point (see `fit`): the axes are rounded to T and shortened so that the
-/// rounded frame never lengthens a vector; the half extents are computed in double from the
-/// rounded frame (widened by the rounding of that computation, `fit_from_sums`), rounded up and
-/// widened by 32 ulps of the box's size, which covers the absolute part of the error of
-/// `raise_dist2` (one subtraction per coordinate, a three-term dot product); and the result is
-/// scaled by 1 - 64 eps, which covers the relative part. So a child holding the nearest triangle
-/// is never skipped on this bound, as on an exact box distance.
+/// child, whatever the point (see `fit`): the axes are shortened by 36 ulps and rounded to T, so
+/// that the rounded frame shortens every vector by more than the relative rounding of
+/// `raise_dist2`; the half extents are computed in double from the rounded frame (widened by the
+/// rounding of that computation, `fit_from_sums`), rounded up and widened by 32 ulps of the box's
+/// size, which covers the absolute part of the error of `raise_dist2` (one subtraction per
+/// coordinate, a three-term dot product). So a child holding the nearest triangle is never
+/// skipped on this bound, as on an exact box distance.
 
 #include <algorithm>
 #include <cmath>
@@ -136,8 +136,11 @@ template <class T, int K> struct NodeObbs {
       a[0] = t0 * std::cos(th) + t1 * std::sin(th);
       a[1] = cross(a[2], a[0]);
     }
-    // Axes rounded to T, then shortened by 4 ulps: |a| <= 1 and the frame never lengthens.
-    constexpr double shorten = 1 - 4 * double(std::numeric_limits<T>::epsilon());
+    // Axes shortened by 36 ulps, then rounded to T: the rounded frame shortens every vector by a
+    // factor below 1 - 34 eps (4 ulps cover the rounding and the frame's departure from
+    // orthonormal), so distances measured in it are below the exact ones by more than the
+    // relative rounding of `raise_dist2` (below 68 eps of the squared distance).
+    constexpr double shorten = 1 - 36 * double(std::numeric_limits<T>::epsilon());
     Vec3<double> r[3];
     for (int q = 0; q < 3; ++q)
       r[q] = {double(T(a[q].x * shorten)), double(T(a[q].y * shorten)),
@@ -187,9 +190,6 @@ template <class T, int K> struct NodeObbs {
   }
 };
 
-/// The factor applied to a computed oriented-box distance (see the file comment).
-template <class T> inline constexpr T obb_shrink = T(1) - T(64) * std::numeric_limits<T>::epsilon();
-
 /// `d2[k] = max(d2[k], squared distance from p to child k's oriented box)`, generic form.
 template <class T, int K>
 EBGEOM_FORCE_INLINE void raise_dist2_generic(const NodeObbs<T, K>& o, const Vec3<T>& p,
@@ -202,7 +202,7 @@ EBGEOM_FORCE_INLINE void raise_dist2_generic(const NodeObbs<T, K>& o, const Vec3
     const T gu = std::max(std::abs(tu) - o.hu[k], T(0));
     const T gv = std::max(std::abs(tv) - o.hv[k], T(0));
     const T gn = std::max(std::abs(tn) - o.hn[k], T(0));
-    const T s = (gu * gu + gv * gv + gn * gn) * obb_shrink<T>;
+    const T s = gu * gu + gv * gv + gn * gn;
     d2[k] = std::max(d2[k], s);
   }
 }
@@ -226,11 +226,9 @@ EBGEOM_FORCE_INLINE void raise_dist2_sse(const NodeObbs<float, 4>& o, const Vec3
   const __m128 dx = _mm_sub_ps(_mm_set1_ps(p.x), _mm_loadu_ps(o.cx));
   const __m128 dy = _mm_sub_ps(_mm_set1_ps(p.y), _mm_loadu_ps(o.cy));
   const __m128 dz = _mm_sub_ps(_mm_set1_ps(p.z), _mm_loadu_ps(o.cz));
-  const __m128 s =
-      _mm_mul_ps(_mm_add_ps(_mm_add_ps(obb_gap2_sse(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
-                                       obb_gap2_sse(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
-                            obb_gap2_sse(o.nx, o.ny, o.nz, o.hn, dx, dy, dz)),
-                 _mm_set1_ps(obb_shrink<float>));
+  const __m128 s = _mm_add_ps(_mm_add_ps(obb_gap2_sse(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
+                                         obb_gap2_sse(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
+                              obb_gap2_sse(o.nx, o.ny, o.nz, o.hn, dx, dy, dz));
   _mm_storeu_ps(d2, _mm_max_ps(s, _mm_loadu_ps(d2))); // a NaN s keeps d2, as std::max
 }
 #endif
@@ -256,17 +254,15 @@ EBGEOM_TARGET_AVX inline void raise_dist2_avx(const NodeObbs<double, 4>& o, cons
   const __m256d dx = _mm256_sub_pd(_mm256_set1_pd(p.x), _mm256_loadu_pd(o.cx));
   const __m256d dy = _mm256_sub_pd(_mm256_set1_pd(p.y), _mm256_loadu_pd(o.cy));
   const __m256d dz = _mm256_sub_pd(_mm256_set1_pd(p.z), _mm256_loadu_pd(o.cz));
-  const __m256d s =
-      _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(obb_gap2_avx(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
+  const __m256d s = _mm256_add_pd(_mm256_add_pd(obb_gap2_avx(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
                                                 obb_gap2_avx(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
-                                  obb_gap2_avx(o.nx, o.ny, o.nz, o.hn, dx, dy, dz)),
-                    _mm256_set1_pd(obb_shrink<double>));
+                                  obb_gap2_avx(o.nx, o.ny, o.nz, o.hn, dx, dy, dz));
   _mm256_storeu_pd(d2, _mm256_max_pd(s, _mm256_loadu_pd(d2))); // a NaN s keeps d2
 }
 #endif
 } // namespace detail
 
-/// `d2[k] = max(d2[k], squared distance from p to child k's oriented box, less 64 ulps)` on
+/// `d2[k] = max(d2[k], squared distance from p to child k's oriented box)` on
 /// instruction set I. The forms compute the same operations in the same order: same values.
 template <Isa I = native_isa, class T, int K>
 EBGEOM_FORCE_INLINE void raise_dist2(const NodeObbs<T, K>& o, const Vec3<T>& p,
