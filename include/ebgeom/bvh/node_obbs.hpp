@@ -137,9 +137,9 @@ template <class T, int K> struct NodeObbs {
       a[1] = cross(a[2], a[0]);
     }
     // Axes shortened by 36 ulps, then rounded to T: the rounded frame shortens every vector by a
-    // factor below 1 - 34 eps (4 ulps cover the rounding and the frame's departure from
-    // orthonormal), so distances measured in it are below the exact ones by more than the
-    // relative rounding of `raise_dist2` (below 68 eps of the squared distance).
+    // factor below 1 - 32 eps (4 ulps cover the rounding and the frame's departure from
+    // orthonormal), so squared distances measured in it are below the exact ones by a factor
+    // below 1 - 64 eps, more than the relative rounding of `raise_dist2`.
     constexpr double shorten = 1 - 36 * double(std::numeric_limits<T>::epsilon());
     Vec3<double> r[3];
     for (int q = 0; q < 3; ++q)
