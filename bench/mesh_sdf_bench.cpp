@@ -947,6 +947,12 @@ int main(int argc, char** argv) {
   if (precision != "float" && precision != "double" && precision != "both") return usage(argv[0]);
   o.run_float = precision != "double";
   o.run_double = precision != "float";
+#ifndef EBGEOM_BENCH_HAVE_FCPW
+  if (o.bands) {
+    std::fprintf(stderr, "--bands needs fcpw at build time (-DEBGEOM_FCPW_DIR)\n");
+    return 2;
+  }
+#endif
 #ifndef EBGEOM_BENCH_HAVE_JSON
   if (o.json || !o.json_file.empty()) {
     std::fprintf(stderr, "--json and --json-file need nlohmann-json at build time\n");

@@ -69,6 +69,14 @@ void fit_child(NodeObbs<T, K>& o, int k, const std::vector<Tri<T>>& tris) {
   o.fit(k, normal, tris.size() * 3, corner);
 }
 
+/// A random point of triangle t (barycentric weights from rng).
+template <class T> Vec3<double> point_on(const Tri<T>& t, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double w0 = (u(rng) + 1) / 2, w1 = (1 - w0) * (u(rng) + 1) / 2;
+  return Vec3<double>::from(t[0]) * w0 + Vec3<double>::from(t[1]) * w1 +
+         Vec3<double>::from(t[2]) * (1 - w0 - w1);
+}
+
 using LD = long double;
 
 /// Squared distance from p to x, in long double.
@@ -136,10 +144,7 @@ TYPED_TEST(NodeObbsTest, NeverExceedsTheDistanceToAnyPointOfTheLeaf) {
       const double s = i < 30 ? 2 * size : i < 50 ? 200 * size : 0;
       Vec3<double> q = at + Vec3<double>{u(rng), u(rng), u(rng)} * s;
       if (i >= 50) {
-        const Tri<T>& t = tris[std::size_t(i) % tris.size()];
-        const double w0 = (u(rng) + 1) / 2, w1 = (1 - w0) * (u(rng) + 1) / 2;
-        q = Vec3<double>::from(t[0]) * w0 + Vec3<double>::from(t[1]) * w1 +
-            Vec3<double>::from(t[2]) * (1 - w0 - w1);
+        q = point_on(tris[std::size_t(i) % tris.size()], rng);
       }
       pts.push_back({T(q.x), T(q.y), T(q.z)});
     }
@@ -192,10 +197,7 @@ TYPED_TEST(NodeObbsTest, AnySumsGiveABoxThatHoldsThePatch) {
       const double s = i < 20 ? 2 * size : 100 * size;
       Vec3<double> q = at + Vec3<double>{u(rng), u(rng), u(rng)} * s;
       if (i >= 40) {
-        const Tri<T>& t = tris[std::size_t(i) % tris.size()];
-        const double w0 = (u(rng) + 1) / 2, w1 = (1 - w0) * (u(rng) + 1) / 2;
-        q = Vec3<double>::from(t[0]) * w0 + Vec3<double>::from(t[1]) * w1 +
-            Vec3<double>::from(t[2]) * (1 - w0 - w1);
+        q = point_on(tris[std::size_t(i) % tris.size()], rng);
       }
       const Vec3<T> p{T(q.x), T(q.y), T(q.z)};
       const LD ref = nearest_sampled_dist2(tris, p);
