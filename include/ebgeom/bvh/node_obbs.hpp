@@ -220,16 +220,21 @@ EBGEOM_FORCE_INLINE __m128 obb_gap2_sse(const float* ax, const float* ay, const 
   return _mm_mul_ps(g, g);
 }
 
-/// K = 4 floats in one SSE register (baseline x86-64).
-EBGEOM_FORCE_INLINE void raise_dist2_sse(const NodeObbs<float, 4>& o, const Vec3<float>& p,
-                                         float (&d2)[4]) noexcept {
-  const __m128 dx = _mm_sub_ps(_mm_set1_ps(p.x), _mm_loadu_ps(o.cx));
-  const __m128 dy = _mm_sub_ps(_mm_set1_ps(p.y), _mm_loadu_ps(o.cy));
-  const __m128 dz = _mm_sub_ps(_mm_set1_ps(p.z), _mm_loadu_ps(o.cz));
-  const __m128 s = _mm_add_ps(_mm_add_ps(obb_gap2_sse(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
-                                         obb_gap2_sse(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
-                              obb_gap2_sse(o.nx, o.ny, o.nz, o.hn, dx, dy, dz));
-  _mm_storeu_ps(d2, _mm_max_ps(s, _mm_loadu_ps(d2))); // a NaN s keeps d2, as std::max
+/// K = 4 or 8 floats, four per SSE register (baseline x86-64).
+template <int K>
+EBGEOM_FORCE_INLINE void raise_dist2_sse(const NodeObbs<float, K>& o, const Vec3<float>& p,
+                                         float (&d2)[K]) noexcept {
+  static_assert(K % 4 == 0);
+  for (int j = 0; j < K; j += 4) {
+    const __m128 dx = _mm_sub_ps(_mm_set1_ps(p.x), _mm_loadu_ps(o.cx + j));
+    const __m128 dy = _mm_sub_ps(_mm_set1_ps(p.y), _mm_loadu_ps(o.cy + j));
+    const __m128 dz = _mm_sub_ps(_mm_set1_ps(p.z), _mm_loadu_ps(o.cz + j));
+    const __m128 s =
+        _mm_add_ps(_mm_add_ps(obb_gap2_sse(o.ux + j, o.uy + j, o.uz + j, o.hu + j, dx, dy, dz),
+                              obb_gap2_sse(o.vx + j, o.vy + j, o.vz + j, o.hv + j, dx, dy, dz)),
+                   obb_gap2_sse(o.nx + j, o.ny + j, o.nz + j, o.hn + j, dx, dy, dz));
+    _mm_storeu_ps(d2 + j, _mm_max_ps(s, _mm_loadu_ps(d2 + j))); // a NaN s keeps d2, as std::max
+  }
 }
 #endif
 
@@ -259,6 +264,31 @@ EBGEOM_TARGET_AVX inline void raise_dist2_avx(const NodeObbs<double, 4>& o, cons
                                   obb_gap2_avx(o.nx, o.ny, o.nz, o.hn, dx, dy, dz));
   _mm256_storeu_pd(d2, _mm256_max_pd(s, _mm256_loadu_pd(d2))); // a NaN s keeps d2
 }
+
+/// One axis of `raise_dist2_avx` for eight floats.
+EBGEOM_TARGET_AVX inline __m256 obb_gap2_avx(const float* ax, const float* ay, const float* az,
+                                             const float* h, __m256 dx, __m256 dy,
+                                             __m256 dz) noexcept {
+  const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+  const __m256 t = _mm256_add_ps(
+      _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(ax), dx), _mm256_mul_ps(_mm256_loadu_ps(ay), dy)),
+      _mm256_mul_ps(_mm256_loadu_ps(az), dz));
+  const __m256 g = _mm256_max_ps(_mm256_sub_ps(_mm256_and_ps(t, abs_mask), _mm256_loadu_ps(h)),
+                                 _mm256_setzero_ps());
+  return _mm256_mul_ps(g, g);
+}
+
+/// K = 8 floats in one AVX register.
+EBGEOM_TARGET_AVX inline void raise_dist2_avx(const NodeObbs<float, 8>& o, const Vec3<float>& p,
+                                              float (&d2)[8]) noexcept {
+  const __m256 dx = _mm256_sub_ps(_mm256_set1_ps(p.x), _mm256_loadu_ps(o.cx));
+  const __m256 dy = _mm256_sub_ps(_mm256_set1_ps(p.y), _mm256_loadu_ps(o.cy));
+  const __m256 dz = _mm256_sub_ps(_mm256_set1_ps(p.z), _mm256_loadu_ps(o.cz));
+  const __m256 s = _mm256_add_ps(_mm256_add_ps(obb_gap2_avx(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
+                                               obb_gap2_avx(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
+                                 obb_gap2_avx(o.nx, o.ny, o.nz, o.hn, dx, dy, dz));
+  _mm256_storeu_ps(d2, _mm256_max_ps(s, _mm256_loadu_ps(d2))); // a NaN s keeps d2
+}
 #endif
 } // namespace detail
 
@@ -270,9 +300,11 @@ EBGEOM_FORCE_INLINE void raise_dist2(const NodeObbs<T, K>& o, const Vec3<T>& p,
 #if EBGEOM_ISA_DISPATCH || defined(__AVX__)
   if constexpr (std::is_same_v<T, double> && K == 4 && I >= Isa::avx2)
     return detail::raise_dist2_avx(o, p, d2);
+  if constexpr (std::is_same_v<T, float> && K == 8 && I >= Isa::avx2)
+    return detail::raise_dist2_avx(o, p, d2);
 #endif
 #if defined(__SSE2__)
-  if constexpr (std::is_same_v<T, float> && K == 4) return raise_dist2_sse(o, p, d2);
+  if constexpr (std::is_same_v<T, float> && (K == 4 || K == 8)) return raise_dist2_sse(o, p, d2);
 #endif
   raise_dist2_generic(o, p, d2);
 }

@@ -3,10 +3,10 @@
 #pragma once
 /// \file
 /// SIMD versions of the per-node child box distances of `wide_bvh.hpp` for the common widths:
-/// K = 4 floats (SSE), K = 8 floats and K = 4 doubles (AVX). GCC does not vectorise the generic
-/// `std::max` loops there (scalar compares and branches: a quarter of a mesh query's
-/// instructions), so these overloads, more specialised than the generic templates, take over
-/// when the compiler targets the instruction set. Same values as the generic loops (max/min of
+/// K = 4 and 8 floats (SSE; K = 8 in one register with AVX) and K = 4 doubles (AVX). GCC does not
+/// vectorise the generic `std::max` loops there (scalar compares and branches: a quarter of a mesh
+/// query's instructions), so these overloads, more specialised than the generic templates, take
+/// over when the compiler targets the instruction set. Same values as the generic loops (max/min of
 /// non-NaN operands are exact; ±0 squares to +0); the generic code remains the reference and the
 /// fallback on other targets. The dispatched kernels (`core/isa.hpp`) reach the AVX forms through
 /// `detail::node_dist2<I>` whatever the translation unit's flags.
@@ -35,32 +35,63 @@ inline constexpr bool has_avx_form = std::is_same_v<BV, Aabb<T>> &&
 namespace ebgeom::bvh {
 
 #if defined(__SSE2__)
-EBGEOM_FORCE_INLINE void child_dist2(const WideNode<float, 4>& n, const Vec3<float>& p,
-                                     float (&d2)[4]) noexcept {
+namespace detail {
+/// Children j..j+3 of a float node, in one SSE register: the squared distance from `p` to each box.
+template <int K>
+EBGEOM_FORCE_INLINE void child_dist2_sse(const WideNode<float, K>& n, int j, const Vec3<float>& p,
+                                         float* d2) noexcept {
   const __m128 z = _mm_setzero_ps();
   const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z);
-  const __m128 dx = _mm_max_ps(
-      _mm_max_ps(_mm_sub_ps(_mm_loadu_ps(n.lo_x), px), _mm_sub_ps(px, _mm_loadu_ps(n.hi_x))), z);
-  const __m128 dy = _mm_max_ps(
-      _mm_max_ps(_mm_sub_ps(_mm_loadu_ps(n.lo_y), py), _mm_sub_ps(py, _mm_loadu_ps(n.hi_y))), z);
-  const __m128 dz = _mm_max_ps(
-      _mm_max_ps(_mm_sub_ps(_mm_loadu_ps(n.lo_z), pz), _mm_sub_ps(pz, _mm_loadu_ps(n.hi_z))), z);
-  _mm_storeu_ps(d2,
+  const __m128 dx = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(n.lo_x + j), px),
+                                          _mm_sub_ps(px, _mm_loadu_ps(n.hi_x + j))),
+                               z);
+  const __m128 dy = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(n.lo_y + j), py),
+                                          _mm_sub_ps(py, _mm_loadu_ps(n.hi_y + j))),
+                               z);
+  const __m128 dz = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(n.lo_z + j), pz),
+                                          _mm_sub_ps(pz, _mm_loadu_ps(n.hi_z + j))),
+                               z);
+  _mm_storeu_ps(d2 + j,
                 _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz)));
 }
 
-EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<float, 4>& n, const Vec3<float>& p,
-                                         float (&d2)[4]) noexcept {
+/// Children j..j+3 of a float node: the squared distance from `p` to each box's farthest point.
+template <int K>
+EBGEOM_FORCE_INLINE void child_far_dist2_sse(const WideNode<float, K>& n, int j,
+                                             const Vec3<float>& p, float* d2) noexcept {
   const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z);
-  const __m128 dx =
-      _mm_max_ps(_mm_sub_ps(px, _mm_loadu_ps(n.lo_x)), _mm_sub_ps(_mm_loadu_ps(n.hi_x), px));
-  const __m128 dy =
-      _mm_max_ps(_mm_sub_ps(py, _mm_loadu_ps(n.lo_y)), _mm_sub_ps(_mm_loadu_ps(n.hi_y), py));
-  const __m128 dz =
-      _mm_max_ps(_mm_sub_ps(pz, _mm_loadu_ps(n.lo_z)), _mm_sub_ps(_mm_loadu_ps(n.hi_z), pz));
-  _mm_storeu_ps(d2,
+  const __m128 dx = _mm_max_ps(_mm_sub_ps(px, _mm_loadu_ps(n.lo_x + j)),
+                               _mm_sub_ps(_mm_loadu_ps(n.hi_x + j), px));
+  const __m128 dy = _mm_max_ps(_mm_sub_ps(py, _mm_loadu_ps(n.lo_y + j)),
+                               _mm_sub_ps(_mm_loadu_ps(n.hi_y + j), py));
+  const __m128 dz = _mm_max_ps(_mm_sub_ps(pz, _mm_loadu_ps(n.lo_z + j)),
+                               _mm_sub_ps(_mm_loadu_ps(n.hi_z + j), pz));
+  _mm_storeu_ps(d2 + j,
                 _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz)));
 }
+} // namespace detail
+
+EBGEOM_FORCE_INLINE void child_dist2(const WideNode<float, 4>& n, const Vec3<float>& p,
+                                     float (&d2)[4]) noexcept {
+  detail::child_dist2_sse(n, 0, p, d2);
+}
+EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<float, 4>& n, const Vec3<float>& p,
+                                         float (&d2)[4]) noexcept {
+  detail::child_far_dist2_sse(n, 0, p, d2);
+}
+#if !defined(__AVX__)
+// K = 8 floats without AVX: two SSE halves (the AVX forms below replace them under AVX).
+EBGEOM_FORCE_INLINE void child_dist2(const WideNode<float, 8>& n, const Vec3<float>& p,
+                                     float (&d2)[8]) noexcept {
+  detail::child_dist2_sse(n, 0, p, d2);
+  detail::child_dist2_sse(n, 4, p, d2);
+}
+EBGEOM_FORCE_INLINE void child_far_dist2(const WideNode<float, 8>& n, const Vec3<float>& p,
+                                         float (&d2)[8]) noexcept {
+  detail::child_far_dist2_sse(n, 0, p, d2);
+  detail::child_far_dist2_sse(n, 4, p, d2);
+}
+#endif
 #endif
 
 namespace detail {

@@ -160,18 +160,54 @@ EBGEOM_TARGET_AVX2 inline int order_children4(const float (&d2)[4], float lim,
   order_keys4(d, _mm_castps_si128(in), key);
   return _mm_popcnt_u32(unsigned(_mm_movemask_ps(in)));
 }
+
+/// One layer of compare-exchanges on eight unsigned keys: each lane meets lane `partner[lane]`;
+/// the lanes set in `Hi` (an 8-bit blend mask) keep the larger key, the others the smaller.
+template <int Hi>
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256i compare_exchange8(__m256i x,
+                                                                 __m256i partner) noexcept {
+  const __m256i q = _mm256_permutevar8x32_epi32(x, partner);
+  return _mm256_blend_epi32(_mm256_min_epu32(x, q), _mm256_max_epu32(x, q), Hi);
+}
+
+/// Sorts eight 32-bit keys in one register (`order_children` for K = 8 floats) by the optimal
+/// 8-input network of depth 6 (19 compare-exchanges): (0,2)(1,3)(4,6)(5,7) (0,4)(1,5)(2,6)(3,7)
+/// (0,1)(2,3)(4,5)(6,7) (2,4)(3,5) (1,4)(3,6) (1,2)(3,4)(5,6), each layer one lane permutation,
+/// a min, a max and a blend. The keys are distinct, so the order is that of any correct sort.
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256i sort8_keys(__m256i v) noexcept {
+  v = compare_exchange8<0xcc>(v, _mm256_setr_epi32(2, 3, 0, 1, 6, 7, 4, 5));
+  v = compare_exchange8<0xf0>(v, _mm256_setr_epi32(4, 5, 6, 7, 0, 1, 2, 3));
+  v = compare_exchange8<0xaa>(v, _mm256_setr_epi32(1, 0, 3, 2, 5, 4, 7, 6));
+  v = compare_exchange8<0x30>(v, _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7));
+  v = compare_exchange8<0x50>(v, _mm256_setr_epi32(0, 4, 2, 6, 1, 5, 3, 7));
+  return compare_exchange8<0x54>(v, _mm256_setr_epi32(0, 2, 1, 4, 3, 6, 5, 7));
+}
+
+EBGEOM_TARGET_AVX2 inline int order_children8(const float (&d2)[8], float lim,
+                                              std::uint32_t (&key)[8]) noexcept {
+  const __m256 d = _mm256_loadu_ps(d2);
+  const __m256 in = _mm256_cmp_ps(d, _mm256_set1_ps(lim), _CMP_LT_OQ);
+  const __m256i bits =
+      _mm256_or_si256(_mm256_and_si256(_mm256_castps_si256(d), _mm256_set1_epi32(0x7ffffff8)),
+                      _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+  const __m256i k = _mm256_blendv_epi8(_mm256_set1_epi32(-1), bits, _mm256_castps_si256(in));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(key), sort8_keys(k));
+  return _mm_popcnt_u32(unsigned(_mm256_movemask_ps(in)));
+}
 #endif
 
 /// Sorts the children with `d2[k] < lim` nearest first into `key` (`child_key<K>`, the others last
 /// as `excluded_key`; `key[j] & child_mask<K>` is the child) with a branch-free odd-even
 /// transposition network, and returns their count. Replaces an insertion sort whose
-/// data-dependent branches mispredicted at every node. K = 4 on instruction set I with AVX2 takes
-/// the vector network above (same keys, same order).
+/// data-dependent branches mispredicted at every node. K = 4 (float or double) and K = 8 (float)
+/// on instruction set I with AVX2 take the vector networks above (same keys, same order).
 template <class T, int K, Isa I = native_isa>
 inline int order_children(const T (&d2)[K], T lim, std::uint32_t (&key)[K]) noexcept {
 #if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
   if constexpr (I >= Isa::avx2 && K == 4 && (std::is_same_v<T, float> || std::is_same_v<T, double>))
     return order_children4(d2, lim, key);
+  if constexpr (I >= Isa::avx2 && K == 8 && std::is_same_v<T, float>)
+    return order_children8(d2, lim, key);
 #endif
   int m = 0;
   for (int k = 0; k < K; ++k) {

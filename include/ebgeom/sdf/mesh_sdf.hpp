@@ -45,18 +45,25 @@ EBGEOM_BEGIN_EXACT_FP
 
 namespace ebgeom {
 
+/// Default BVH arity of `MeshSdf`: 8 for float (a node's eight child boxes and oriented boxes fill
+/// one AVX register per coordinate; a third fewer nodes per query than 4, 0.99-1.12x the
+/// throughput), 4 for double (8 was no faster; docs/performance.md "Eight children per float
+/// node"). Like the block width it is fixed per type, never by the compile flags.
+template <class T> inline constexpr int default_arity = sizeof(T) == 4 ? 8 : 4;
+
 /// Exact signed distance to a triangle mesh through a BVH (see the file comment).
 ///
-/// - `K`: BVH arity (2..16; 4 is the default, 8 suits AVX-512), `W`: triangles per leaf block.
+/// - `K`: BVH arity (2..16; `default_arity`: 8 for float, 4 for double), `W`: triangles per leaf
+///   block.
 /// - Sign: the pseudonormal of the closest feature (Bærentzen & Aanæs 2005): exact for closed,
 ///   consistently oriented, manifold meshes (check with `validate`).
 /// - Memory: the `TriangleMesh` (~48 B/triangle in float) + blocks (36 B per lane, leaves padded
 ///   to whole blocks) + 4 B per lane of triangle ids + nodes + the oriented boxes of their children
 ///   (`bvh::NodeObbs`, 15 numbers per child of each node) + a seed grid of 8³ triangles (18 KB in
-///   float, 36 KB in double, whatever the mesh's size): about 104 B per triangle in float and 198
+///   float, 36 KB in double, whatever the mesh's size): about 108 B per triangle in float and 198
 ///   in double; `memory_bytes()` reports it.
 /// - Queries are O(log n) on average, allocation-free, and thread-safe (immutable object).
-template <class T, int K = 4, int W = default_block_width<T>> class MeshSdf {
+template <class T, int K = default_arity<T>, int W = default_block_width<T>> class MeshSdf {
  public:
   static_assert(W >= 1 && W <= 64, "MeshSdf: block width W must be in 1..64");
   using scalar_type = T;

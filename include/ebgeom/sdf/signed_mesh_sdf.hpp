@@ -138,11 +138,12 @@ struct SignOptions {
 
 /// Exact distance to a triangle mesh with the sign chosen by `SignMode` (see the file comment).
 /// Wraps a `MeshSdf<T, K, W>` (the magnitude, bit for bit |`MeshSdf`'s value|) and, for
-/// the winding modes, a `FastWindingNumber<T, K>`. Sign convention: < 0 inside. Winding modes
-/// report inside where w > 1/2, so a value is negative only if w > 1/2 and the distance is > 0.
-/// Never NaN for finite queries. Immutable; queries are const, allocation-free and thread-safe.
-/// Follows the split-sign protocol (sdf/split_sign.hpp), so narrow bands stay fast in every mode.
-template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSdf {
+/// the winding modes, a `FastWindingNumber<T>` (its own default arity, 4). Sign convention: < 0
+/// inside. Winding modes report inside where w > 1/2, so a value is negative only if w > 1/2 and
+/// the distance is > 0. Never NaN for finite queries. Immutable; queries are const, allocation-free
+/// and thread-safe. Follows the split-sign protocol (sdf/split_sign.hpp), so narrow bands stay fast
+/// in every mode.
+template <class T, int K = default_arity<T>, int W = default_block_width<T>> class SignedMeshSdf {
  public:
   using scalar_type = T;
   /// Exact magnitude; the sign is exact only with `pseudonormal` on valid meshes, so the static
@@ -259,7 +260,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
       for (std::size_t i = 0; i < pts.size(); ++i) out[i] = sign_at(pts[i]);
       return;
     }
-    constexpr std::size_t B = FastWindingNumber<T, K>::batch_size;
+    constexpr std::size_t B = FastWindingNumber<T>::batch_size;
     bool above[B];
     for (std::size_t i = 0; i < pts.size(); i += B) {
       const std::size_t n = std::min(pts.size() - i, B);
@@ -306,7 +307,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
    private:
     friend class SignedMeshSdf;
     const SignedMeshSdf* sdf_ = nullptr;
-    typename FastWindingNumber<T, K>::RangeScope range_;
+    typename FastWindingNumber<T>::RangeScope range_;
   };
 
   /// Fills `out` for boxes inside `box` (see `SignScope`).
@@ -381,7 +382,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
     if (!sdf) return sdf.error();
     s.sdf_ = std::move(*sdf);
     if (s.mode_ == SignMode::fast_winding) {
-      auto f = FastWindingNumber<T, K>::make(s.sdf_.mesh(), opt.winding);
+      auto f = FastWindingNumber<T>::make(s.sdf_.mesh(), opt.winding);
       if (!f) return f.error();
       s.fast_ = std::move(*f);
     }
@@ -400,7 +401,7 @@ template <class T, int K = 4, int W = default_block_width<T>> class SignedMeshSd
   }
 
   MeshSdf<T, K, W> sdf_;
-  FastWindingNumber<T, K> fast_;
+  FastWindingNumber<T> fast_;
   SignMode mode_ = SignMode::pseudonormal;
   std::string reason_;
 };

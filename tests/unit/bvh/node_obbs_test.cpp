@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <random>
 #include <string>
@@ -166,6 +168,76 @@ TYPED_TEST(NodeObbsTest, NeverExceedsTheDistanceToAnyPointOfTheLeaf) {
   }
   EXPECT_GT(checked, 10000);
   EXPECT_GT(raised, checked / 4); // a bound that is always 0 would pass the check above
+}
+
+namespace {
+/// Every form of `raise_dist2` for K children that this build and CPU can run gives the generic
+/// form's values bit for bit, on boxes fitted to random patches (and cleared children) and points
+/// near, far and on them, from starting distances below and above the boxes'.
+template <class T, int K> void every_form_equals_the_generic_one() {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  using Form = std::function<void(const NodeObbs<T, K>&, const Vec3<T>&, T(&)[K])>;
+  std::vector<std::pair<std::string, Form>> fs;
+  fs.push_back({"native", [](const NodeObbs<T, K>& o, const Vec3<T>& p, T(&d2)[K]) {
+                  raise_dist2<native_isa>(o, p, d2);
+                }});
+  fs.push_back({"baseline", [](const NodeObbs<T, K>& o, const Vec3<T>& p, T(&d2)[K]) {
+                  raise_dist2<Isa::baseline>(o, p, d2);
+                }});
+#if EBGEOM_ISA_DISPATCH
+  if (int(detected_isa()) >= int(Isa::avx2))
+    fs.push_back({"avx2", [](const NodeObbs<T, K>& o, const Vec3<T>& p, T(&d2)[K]) {
+                    raise_dist2<Isa::avx2>(o, p, d2);
+                  }});
+  if (int(detected_isa()) >= int(Isa::avx512))
+    fs.push_back({"avx512", [](const NodeObbs<T, K>& o, const Vec3<T>& p, T(&d2)[K]) {
+                    raise_dist2<Isa::avx512>(o, p, d2);
+                  }});
+#endif
+  int compared = 0, raised = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const double size = std::pow(10.0, 2 * u(rng));
+    NodeObbs<T, K> o;
+    o.clear();
+    std::vector<Tri<T>> all;
+    for (int k = 0; k < K; ++k) {
+      if ((trial + k) % 5 == 4) continue; // a cleared child
+      const Vec3<double> at = Vec3<double>{u(rng), u(rng), u(rng)} * (4 * size);
+      const auto tris = patch<T>(k % 4, rng, at, size);
+      fit_child(o, k, tris);
+      all.insert(all.end(), tris.begin(), tris.end());
+    }
+    for (int i = 0; i < 50; ++i) {
+      const double s = i < 25 ? 6 * size : 100 * size;
+      Vec3<double> q = Vec3<double>{u(rng), u(rng), u(rng)} * s;
+      if (i >= 40) q = point_on(all[std::size_t(i) % all.size()], rng);
+      const Vec3<T> p{T(q.x), T(q.y), T(q.z)};
+      T start[K];
+      for (int k = 0; k < K; ++k) start[k] = T((u(rng) + 1) * size * size * (i % 3));
+      T want[K];
+      std::copy(start, start + K, want);
+      raise_dist2_generic(o, p, want);
+      for (const auto& [name, f] : fs) {
+        T got[K];
+        std::copy(start, start + K, got);
+        f(o, p, got);
+        for (int k = 0; k < K; ++k)
+          ASSERT_EQ(std::memcmp(&got[k], &want[k], sizeof(T)), 0)
+              << name << " K " << K << " child " << k << ": " << got[k] << " vs " << want[k];
+        ++compared;
+      }
+      for (int k = 0; k < K; ++k) raised += want[k] > start[k];
+    }
+  }
+  EXPECT_GE(compared, 40 * 50 * 2);
+  EXPECT_GT(raised, 40 * 50 * K / 10); // the boxes do raise distances
+}
+} // namespace
+
+TYPED_TEST(NodeObbsTest, EveryFormEqualsTheGenericOneForFourAndEightChildren) {
+  every_form_equals_the_generic_one<TypeParam, 4>();
+  every_form_equals_the_generic_one<TypeParam, 8>();
 }
 
 TYPED_TEST(NodeObbsTest, AnySumsGiveABoxThatHoldsThePatch) {

@@ -10,6 +10,7 @@
 
 #include "ebgeom/bvh/experimental/nearest_variants.hpp"
 #include "ebgeom/bvh/point_cloud.hpp"
+#include "ebgeom/core/isa.hpp"
 #include "test_support.hpp"
 
 using namespace ebgeom;
@@ -222,7 +223,8 @@ TYPED_TEST(TraverseTest, SphereBoundingVolumesGiveTheSameNearestAndVisits) {
 
 namespace {
 /// `order_children` against a plain sort of the surviving children.
-template <class T, int K> void order_children_matches_a_sort(std::mt19937_64& rng) {
+template <class T, int K, Isa I = native_isa>
+void order_children_matches_a_sort(std::mt19937_64& rng) {
   std::uniform_int_distribution<int> pick(0, 6);
   const T pool[7] = {T(0),
                      T(-0.0),
@@ -236,7 +238,7 @@ template <class T, int K> void order_children_matches_a_sort(std::mt19937_64& rn
     for (int k = 0; k < K; ++k) d2[k] = pool[pick(rng)]; // ties, zeros and empty slots
     const T lim = round % 3 == 0 ? std::numeric_limits<T>::infinity() : T(1.5);
     std::uint32_t key[K];
-    const int m = bvh::detail::order_children<T, K>(d2, lim, key);
+    const int m = bvh::detail::order_children<T, K, I>(d2, lim, key);
     std::vector<std::pair<T, int>> want;
     for (int k = 0; k < K; ++k)
       if (d2[k] < lim) want.push_back({d2[k], k});
@@ -244,7 +246,8 @@ template <class T, int K> void order_children_matches_a_sort(std::mt19937_64& rn
     ASSERT_EQ(m, int(want.size()));
     for (int j = 0; j < m; ++j) {
       const int k = int(key[j] & bvh::detail::child_mask<K>);
-      ASSERT_EQ(d2[k], want[std::size_t(j)].first) << "K " << K << " position " << j;
+      ASSERT_EQ(d2[k], want[std::size_t(j)].first)
+          << "K " << K << " isa " << int(I) << " position " << j;
       ASSERT_EQ(k, want[std::size_t(j)].second) << "ties keep the child order";
     }
   }
@@ -257,4 +260,12 @@ TYPED_TEST(TraverseTest, OrderChildrenSortsTheSurvivorsNearestFirst) {
   order_children_matches_a_sort<TypeParam, 4>(rng);
   order_children_matches_a_sort<TypeParam, 8>(rng);
   order_children_matches_a_sort<TypeParam, 16>(rng);
+  order_children_matches_a_sort<TypeParam, 4, Isa::baseline>(rng);
+  order_children_matches_a_sort<TypeParam, 8, Isa::baseline>(rng);
+#if EBGEOM_ISA_DISPATCH
+  if (int(detected_isa()) >= int(Isa::avx2)) { // the vector networks (K = 4; K = 8 floats)
+    order_children_matches_a_sort<TypeParam, 4, Isa::avx2>(rng);
+    order_children_matches_a_sort<TypeParam, 8, Isa::avx2>(rng);
+  }
+#endif
 }
