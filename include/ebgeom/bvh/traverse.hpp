@@ -215,12 +215,20 @@ inline int order_children(const T (&d2)[K], T lim, std::uint32_t (&key)[K]) noex
     m += in;
     key[k] = in ? child_key<K>(d2[k], k) : excluded_key;
   }
-  for (int r = 0; r < K; ++r)
-    for (int i = r & 1; i + 1 < K; i += 2) {
-      const std::uint32_t a = key[i], b = key[i + 1];
-      key[i] = a < b ? a : b;
-      key[i + 1] = a < b ? b : a;
-    }
+  const auto exchange = [&key](int i, int j) noexcept {
+    const std::uint32_t a = key[i], b = key[j];
+    key[i] = a < b ? a : b;
+    key[j] = a < b ? b : a;
+  };
+  if constexpr (K == 8) { // the 19-comparator network of `sort8_keys` (28 in the loop below)
+    constexpr int pairs[19][2] = {{0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6},
+                                  {3, 7}, {0, 1}, {2, 3}, {4, 5}, {6, 7}, {2, 4}, {3, 5},
+                                  {1, 4}, {3, 6}, {1, 2}, {3, 4}, {5, 6}};
+    for (const auto& q : pairs) exchange(q[0], q[1]);
+  } else {
+    for (int r = 0; r < K; ++r)
+      for (int i = r & 1; i + 1 < K; i += 2) exchange(i, i + 1);
+  }
   return m;
 }
 } // namespace detail
