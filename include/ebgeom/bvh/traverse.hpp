@@ -197,10 +197,11 @@ EBGEOM_TARGET_AVX2 inline int order_children8(const float (&d2)[8], float lim,
 #endif
 
 /// Sorts the children with `d2[k] < lim` nearest first into `key` (`child_key<K>`, the others last
-/// as `excluded_key`; `key[j] & child_mask<K>` is the child) with a branch-free odd-even
-/// transposition network, and returns their count. Replaces an insertion sort whose
-/// data-dependent branches mispredicted at every node. K = 4 (float or double) and K = 8 (float)
-/// on instruction set I with AVX2 take the vector networks above (same keys, same order).
+/// as `excluded_key`; `key[j] & child_mask<K>` is the child) with a branch-free sorting network
+/// (odd-even transposition; for K = 8 the 19-comparator network), and returns their count. Replaces
+/// an insertion sort whose data-dependent branches mispredicted at every node. K = 4 (float or
+/// double) and K = 8 (float) on instruction set I with AVX2 take the vector networks above (same
+/// keys, same order).
 template <class T, int K, Isa I = native_isa>
 inline int order_children(const T (&d2)[K], T lim, std::uint32_t (&key)[K]) noexcept {
 #if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
