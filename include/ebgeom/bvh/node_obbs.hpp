@@ -293,7 +293,10 @@ EBGEOM_TARGET_AVX inline void raise_dist2_avx(const NodeObbs<float, 8>& o, const
 } // namespace detail
 
 /// `d2[k] = max(d2[k], squared distance from p to child k's oriented box)` on
-/// instruction set I. The forms compute the same operations in the same order: same values.
+/// instruction set I. The forms compute the same operations in the same order: same values, except
+/// where GCC fuses a multiply and an add into one rounding (with FMA enabled it does so in
+/// intrinsics too). A fused form is still a lower bound: fewer roundings, within the same error
+/// bound.
 template <Isa I = native_isa, class T, int K>
 EBGEOM_FORCE_INLINE void raise_dist2(const NodeObbs<T, K>& o, const Vec3<T>& p,
                                      T (&d2)[K]) noexcept {
