@@ -301,9 +301,9 @@ template <Isa I = native_isa, class T, int K>
 EBGEOM_FORCE_INLINE void raise_dist2(const NodeObbs<T, K>& o, const Vec3<T>& p,
                                      T (&d2)[K]) noexcept {
 #if EBGEOM_ISA_DISPATCH || defined(__AVX__)
-  if constexpr (std::is_same_v<T, double> && K == 4 && I >= Isa::avx2)
-    return detail::raise_dist2_avx(o, p, d2);
-  if constexpr (std::is_same_v<T, float> && K == 8 && I >= Isa::avx2)
+  // One AVX register per coordinate: four doubles or eight floats.
+  if constexpr (I >= Isa::avx2 &&
+                ((std::is_same_v<T, double> && K == 4) || (std::is_same_v<T, float> && K == 8)))
     return detail::raise_dist2_avx(o, p, d2);
 #endif
 #if defined(__SSE2__)
