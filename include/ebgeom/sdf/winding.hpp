@@ -336,6 +336,30 @@ sqrt_lanes_avx512(T* EBGEOM_RESTRICT x) noexcept {
       _mm512_storeu_pd(x + j, _mm512_maskz_sqrt_pd(__mmask8(0xFF), _mm512_loadu_pd(x + j)));
   }
 }
+
+/// `rsqrt_lanes_f`'s estimate and Newton step with AVX2.
+template <int N>
+EBGEOM_TARGET_AVX2 EBGEOM_WINDING_KERNEL inline void
+rsqrt_lanes_f_avx2(float* EBGEOM_RESTRICT x) noexcept {
+  const __m256 half = _mm256_set1_ps(0.5f), three = _mm256_set1_ps(3.0f);
+  for (int j = 0; j < N; j += 8) {
+    const __m256 v = _mm256_loadu_ps(x + j), y = _mm256_rsqrt_ps(v);
+    const __m256 t = _mm256_sub_ps(three, _mm256_mul_ps(_mm256_mul_ps(v, y), y));
+    _mm256_storeu_ps(x + j, _mm256_mul_ps(_mm256_mul_ps(half, y), t));
+  }
+}
+
+/// `rsqrt_lanes_f`'s estimate and Newton step with AVX-512.
+template <int N>
+EBGEOM_TARGET_AVX512 EBGEOM_WINDING_KERNEL inline void
+rsqrt_lanes_f_avx512(float* EBGEOM_RESTRICT x) noexcept {
+  const __m512 half = _mm512_set1_ps(0.5f), three = _mm512_set1_ps(3.0f);
+  for (int j = 0; j < N; j += 16) {
+    const __m512 v = _mm512_loadu_ps(x + j), y = _mm512_rsqrt14_ps(v);
+    const __m512 t = _mm512_sub_ps(three, _mm512_mul_ps(_mm512_mul_ps(v, y), y));
+    _mm512_storeu_ps(x + j, _mm512_mul_ps(_mm512_mul_ps(half, y), t));
+  }
+}
 #endif
 
 /// x[j] = sqrt(x[j]) for j < N (N a multiple of 8), correctly rounded as `std::sqrt` (the same
@@ -353,6 +377,31 @@ EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void sqrt_lanes(T* EBGEOM_RESTRICT x) 
 #else
   sqrt_lanes_native<N>(x);
 #endif
+}
+
+/// Relative error bound of `rsqrt_lanes_f`, in units of u = 2⁻²⁴.
+inline constexpr double rsqrt_lanes_f_error_u = 8;
+
+/// x[j] = 1 / sqrt(x[j]) for j < N (N a multiple of 16) in float, for the bounds of
+/// `FastWindingNumber::bound_batch` only: with AVX-512 (`rsqrt14`, relative error < 2⁻¹⁴) or AVX2
+/// (`rsqrt`, < 1.5 · 2⁻¹²), the estimate y then one Newton step y (3 - x y²) / 2, whose relative
+/// error is 1.5 e² + e³ / 2 for an estimate's e (<= 3.4 u) plus the step's four roundings (<= 4 u):
+/// within `rsqrt_lanes_f_error_u` u of 1 / √x for positive normal x (x = +inf or a denormal may
+/// give NaN or inf). Elsewhere 1 / sqrt(x), correctly rounded twice (2 u).
+template <Isa I, int N>
+EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void rsqrt_lanes_f(float* EBGEOM_RESTRICT x) noexcept {
+  static_assert(N % 16 == 0, "rsqrt_lanes_f: N must be a multiple of 16");
+#if EBGEOM_ISA_DISPATCH
+  if constexpr (I == Isa::avx512) {
+    rsqrt_lanes_f_avx512<N>(x);
+    return;
+  } else if constexpr (I == Isa::avx2) {
+    rsqrt_lanes_f_avx2<N>(x);
+    return;
+  }
+#endif
+  sqrt_lanes<I, N>(x);
+  for (int j = 0; j < N; ++j) x[j] = 1.0f / x[j];
 }
 
 /// Largest |`atan2_bounded(y, x)` - `std::atan2(y, x)`| over all finite (y, x), both rounded as
@@ -405,18 +454,44 @@ EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE double atan2_bounded(double y, double 
   return copysign(t + ((x - x) + (y - y)), y);
 }
 
+/// a b + c in float for the bounds of `FastWindingNumber::bound_batch`: one fused multiply-add
+/// (one rounding) in the kernels of instruction sets that have it (AVX2, AVX-512, or a build
+/// whose own flags include FMA), a b then + c elsewhere. Only for values whose error bounds hold
+/// either way: every bound below counts at most the roundings of the unfused form, and a fused
+/// step rounds once where that form rounds twice, with no larger error.
+template <Isa I> EBGEOM_FORCE_INLINE float fmadd_f(float a, float b, float c) noexcept {
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__FMA__)
+  return __builtin_fmaf(a, b, c);
+#elif EBGEOM_ISA_DISPATCH
+  if constexpr (I == Isa::avx2 || I == Isa::avx512)
+    return __builtin_fmaf(a, b, c);
+  else
+    return a * b + c;
+#else
+  return a * b + c;
+#endif
+}
+
 /// Largest |`atan2_bounded_f(y, x)` - atan2(y, x)| over all finite float (y, x): see
 /// `atan2_bounded_f`.
-inline constexpr double atan2_bounded_f_error = 4e-6;
+inline constexpr double atan2_bounded_f_error = 2e-5;
 
-/// `atan2_bounded` in float arithmetic (the same polynomial, coefficients rounded to float), for
-/// the float lanes of `FastWindingNumber::bound_batch`. The bound: the polynomial's own error
-/// 2.4e-7 (`atan2_bounded`), 6e-8 from the rounded coefficients (u Σ |c_k|, u = 2⁻²⁴), the
-/// division's u a <= 6e-8, the Horner steps' roundings (|t| <= 1/3 and |c| <= 1/3 at every step,
-/// two roundings each, propagated through factors a² <= 1: at most 20 u <= 1.2e-6 with the
-/// final product), and the reflections π/2 - t, π - t (3e-7): 1.9e-6 < 4e-6.
-/// tests/unit/sign/winding_test.cpp checks it at 2²⁰ ratios against `std::atan2` in double.
-EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE float atan2_bounded_f(float y, float x) noexcept {
+/// atan2(y, x) in float for the float lanes of `FastWindingNumber::bound_batch`, whose bounds
+/// need far less than float's precision: the octant reduction of `atan2_bounded` with a = lo ·
+/// (1 / hi), `inv_hi` = 1 / hi (1 for x = y = 0, +inf where 1 / hi overflows) returned for the
+/// caller's own use, then atan(a)
+/// by the degree-9 polynomial of Abramowitz & Stegun 4.4.47 (Horner steps by `fmadd_f<I>`). The
+/// bound: the polynomial with its coefficients as written errs by at most 1.15e-5 at the 2²⁴ + 1
+/// points a = i 2⁻²⁴ of [0, 1] (computed in double against atan), and |e'| <= Σ (2k + 1) |c_k| + 1
+/// <= 4.68, so |e| <= 1.15e-5 + 4.68 · 2⁻²⁵ <= 1.17e-5 on [0, 1]; the coefficients rounded to
+/// float add u Σ |c_k| <= 1e-7 (u = 2⁻²⁴), a's two roundings 2 u a |p'| <= 4.4e-7, the Horner
+/// steps (|t| <= 1 throughout, at most two roundings per step, propagated through factors a² <=
+/// 1) and the last product at most 9 u <= 5.4e-7, the reflections π/2 - t and π - t 3e-7: 1.3e-5
+/// < 2e-5. tests/unit/sign/winding_test.cpp checks it at 2²⁰ ratios against `std::atan2` in
+/// double.
+template <Isa I = Isa::baseline>
+EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE float atan2_bounded_f(float y, float x,
+                                                                float& inv_hi) noexcept {
 #if defined(__GNUC__) || defined(__clang__)
   const auto fabs = [](float v) { return __builtin_fabsf(v); };
   const auto copysign = [](float m, float sg) { return __builtin_copysignf(m, sg); };
@@ -424,25 +499,33 @@ EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE float atan2_bounded_f(float y, float x
   const auto fabs = [](float v) { return std::abs(v); };
   const auto copysign = [](float m, float sg) { return std::copysign(m, sg); };
 #endif
-  constexpr float c1 = -0.3333314528f, c2 = 0.1999355085f, c3 = -0.1420889944f, c4 = 0.1065626393f,
-                  c5 = -0.0752896400f, c6 = 0.0429096138f, c7 = -0.0161657367f, c8 = 0.0028662257f;
+  constexpr float c1 = 0.9998660f, c3 = -0.3302995f, c5 = 0.1801410f, c7 = -0.0851330f,
+                  c9 = 0.0208351f;
   constexpr float pi_2 = 1.5707963267948966f, pi_1 = 3.141592653589793f;
   const float ax = fabs(x), ay = fabs(y);
   const float hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
-  const float a = lo / (hi > 0 ? hi : 1.0f);
+  // Below 1e-30, both scaled by 2⁶⁴ (exactly) so that 1 / hi does not overflow.
+  const float sc = hi < 1e-30f ? 18446744073709551616.0f : 1.0f;
+  inv_hi = 1.0f / (hi > 0 ? hi * sc : 1.0f);
+  const float a = (lo * sc) * inv_hi;
+  inv_hi *= sc; // 1 / hi, or +inf where that overflows
   const float a2 = a * a;
-  float t = c8;
-  t = t * a2 + c7;
-  t = t * a2 + c6;
-  t = t * a2 + c5;
-  t = t * a2 + c4;
-  t = t * a2 + c3;
-  t = t * a2 + c2;
-  t = t * a2 + c1;
-  t = (t * a2 + 1.0f) * a;
+  float t = c9;
+  t = fmadd_f<I>(t, a2, c7);
+  t = fmadd_f<I>(t, a2, c5);
+  t = fmadd_f<I>(t, a2, c3);
+  t = fmadd_f<I>(t, a2, c1);
+  t = t * a;
   t = ay > ax ? pi_2 - t : t;
   t = copysign(1.0f, x) < 0 ? pi_1 - t : t;
   return copysign(t + ((x - x) + (y - y)), y);
+}
+
+/// `atan2_bounded_f` without the reciprocal.
+template <Isa I = Isa::baseline>
+EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE float atan2_bounded_f(float y, float x) noexcept {
+  float inv_hi;
+  return atan2_bounded_f<I>(y, x, inv_hi);
 }
 } // namespace detail
 
@@ -687,7 +770,8 @@ template <class T, int K = 4> class FastWindingNumber {
   /// far from the chunk's whole box are evaluated once, at the box's centre, as a first-order
   /// model with a bound on its second-order remainder over the box (`far_range`); each point
   /// evaluates the rest (its own far tests, far fields and near leaves) in packets of
-  /// `packet_width`; with T = float, the near solid angles in float (`leaf_lanes_f`). The
+  /// `packet_width`; with T = float, the near solid angles in float (`leaf_lanes_f`) and the far
+  /// fields from an approximate reciprocal square root (`detail::rsqrt_lanes_f`). The
   /// interval is wider than `bound_packet`'s by the model's remainder, the far sums' rounding and
   /// the float angles' error (about 0.06 on average on the bunny's tiles at 256³). Batches of at
   /// most `packet_width` points, a root leaf or a NaN point take `bound_packet`. Thread-safe.
@@ -808,16 +892,34 @@ template <class T, int K = 4> class FastWindingNumber {
     // A child no point of the packet takes as far adds +0 to every f[j], which leaves it as
     // it is (f starts at +0 and a sum is -0 only when both terms are): skip its far fields.
     if ((bits & mask) == 0) return bits;
-    detail::sqrt_lanes<I, P>(len);
-    for (int j = 0; j < P; ++j) {
-      const T inv_r = T(1) / len[j];
-      const T ux = rx[j] * inv_r, uy = ry[j] * inv_r, uz = rz[j] * inv_r;
-      const T inv_r2 = inv_r * inv_r;
-      const T order1 = (nx * ux + ny * uy + nz * uz) * inv_r2;
-      const T quad = ux * (m0 * ux + m1 * uy + m2 * uz) + uy * (m3 * ux + m4 * uy + m5 * uz) +
-                     uz * (m6 * ux + m7 * uy + m8 * uz);
-      const T v = order1 + (trace - T(3) * quad) * inv_r2 * inv_r;
-      f[j] += is_far[j] ? v : T(0);
+    if constexpr (Mag && std::is_same_v<T, float>) {
+      // For `bound_batch`'s bounds only (the same far tests; the values within its margin):
+      // an approximate reciprocal square root (`rsqrt_lanes_f`) and fused multiply-adds.
+      const auto fma = [](float a, float b, float c) { return detail::fmadd_f<I>(a, b, c); };
+      detail::rsqrt_lanes_f<I, P>(len);
+      for (int j = 0; j < P; ++j) {
+        const T inv_r = len[j];
+        const T ux = rx[j] * inv_r, uy = ry[j] * inv_r, uz = rz[j] * inv_r;
+        const T inv_r2 = inv_r * inv_r;
+        const T order1 = fma(nz, uz, fma(ny, uy, nx * ux)) * inv_r2;
+        const T qx = fma(m2, uz, fma(m1, uy, m0 * ux)), qy = fma(m5, uz, fma(m4, uy, m3 * ux)),
+                qz = fma(m8, uz, fma(m7, uy, m6 * ux));
+        const T quad = fma(uz, qz, fma(uy, qy, ux * qx));
+        const T v = fma(fma(T(-3), quad, trace), inv_r2 * inv_r, order1);
+        f[j] += is_far[j] ? v : T(0);
+      }
+    } else {
+      detail::sqrt_lanes<I, P>(len);
+      for (int j = 0; j < P; ++j) {
+        const T inv_r = T(1) / len[j];
+        const T ux = rx[j] * inv_r, uy = ry[j] * inv_r, uz = rz[j] * inv_r;
+        const T inv_r2 = inv_r * inv_r;
+        const T order1 = (nx * ux + ny * uy + nz * uz) * inv_r2;
+        const T quad = ux * (m0 * ux + m1 * uy + m2 * uz) + uy * (m3 * ux + m4 * uy + m5 * uz) +
+                       uz * (m6 * ux + m7 * uy + m8 * uz);
+        const T v = order1 + (trace - T(3) * quad) * inv_r2 * inv_r;
+        f[j] += is_far[j] ? v : T(0);
+      }
     }
     if constexpr (Mag)
       for (int j = 0; j < P; ++j) mag[j] += is_far[j] ? magk : T(0);
@@ -1076,10 +1178,13 @@ template <class T, int K = 4> class FastWindingNumber {
       frontier_sums_inline<I>(fr, pts + i, m, far_sum, near, cnt, mag, errn, pops);
       // Rounding: `operator()` sums the far fields of the point's far children in T, each
       // computed with at most 64 roundings relative to its `magf` and then added through at most
-      // K + 2 + (nodes visited) sums; our far_sum adds those of the items the same way. Both are
-      // within (nodes + K + 66) eps Σ magf of the exact sum of the same terms (with the model's
+      // K + 2 + (nodes visited) sums; our far_sum adds those of the items the same way, each
+      // computed (T = float) from a reciprocal square root within 8 u (`rsqrt_lanes_f`, u = eps
+      // / 2) instead of 2 u, raised to powers up to 5 in the terms: at most 15 eps more. Both are
+      // within (nodes + K + 96) eps Σ magf of the exact sum of the same terms (with the model's
       // terms exact up to their Taylor remainder and their own rounding in double).
-      const double steps = double(fr.nodes) + double(pops) + K + 66;
+      static_assert(detail::rsqrt_lanes_f_error_u <= 8, "the margin below assumes 8 u");
+      const double steps = double(fr.nodes) + double(pops) + K + 96;
       const double mag_slack = 1 + 2 * (double(pops) * K + K) * eps; // mag[j] summed in T
       for (int j = 0; j < m; ++j) {
         const Vec3<T>& q = pts[i + std::size_t(j)];
@@ -1410,13 +1515,14 @@ template <class T, int K = 4> class FastWindingNumber {
   /// For `bound_batch` (T = float): s[j] = Σ of the solid angles of slots [first, first + count)
   /// at point j, computed in float with `detail::atan2_bounded_f`, and err[j] a bound on its
   /// distance to `leaf_sum`'s terms (before their sum). Per triangle: the float num and den (the
-  /// arithmetic of `solid_angle_terms`, inputs a - p etc. rounded) are within 15.6 u M and 53 u M
-  /// of the exact ones (u = 2⁻²⁴, M = |a||b||c|: the triple product's six terms sum to at most
-  /// √3 M, the four terms of den to 4 M; ≤ 5 roundings deep), so (num, den) is within
-  /// D = 128 u M (computed M, rounded) of the exact point, and the angle 2 atan2 within π D / R,
-  /// R = |(num, den)| >= (|num| + |den|) / √2, when D < R / 2 and the disk does not reach the
-  /// branch cut (num = 0, den < 0); otherwise, or where M is tiny (underflow), err is +inf. Plus
-  /// twice `atan2_bounded_f_error` and `std::atan2`'s own 1 ulp.
+  /// arithmetic of `solid_angle_terms`, inputs a - p etc. rounded; products and sums fused by
+  /// `detail::fmadd_f` where the instruction set has it) are within 15.6 u M and 53 u M of the
+  /// exact ones (u = 2⁻²⁴, M = |a||b||c|: the triple product's six terms sum to at most √3 M, the
+  /// four terms of den to 4 M; ≤ 5 roundings deep, fewer where fused), so (num, den) is within
+  /// D = 128 u M (computed M, rounded) of the exact point, and the angle 2 atan2 within π D / R
+  /// <= π D / H, R = |(num, den)| >= H = max(|num|, |den|), when D < H / 2 and the disk does not
+  /// reach the branch cut (num = 0, den < 0); otherwise, or where M is tiny (underflow), err is
+  /// +inf. Plus twice `atan2_bounded_f_error` and `std::atan2`'s own 1 ulp.
   template <Isa I, int N>
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
   leaf_lanes_f(std::uint32_t first, std::uint32_t count, const float* px, const float* py,
@@ -1427,6 +1533,7 @@ template <class T, int K = 4> class FastWindingNumber {
     constexpr float kpi = float(3.141592653589793 * 1.001);
     constexpr float kat = float(2 * (detail::atan2_bounded_f_error + 1e-15));
     constexpr float inf = std::numeric_limits<float>::infinity();
+    const auto fma = [](float a, float b, float c) { return detail::fmadd_f<I>(a, b, c); };
     alignas(64) float la[N], lb[N], lc[N];
     for (int j = 0; j < N; ++j) s[j] = 0, err[j] = 0;
     for (std::size_t i = first; i < std::size_t(first) + count; ++i) {
@@ -1437,9 +1544,9 @@ template <class T, int K = 4> class FastWindingNumber {
         const float rax = ax - px[j], ray = ay - py[j], raz = az - pz[j];
         const float rbx = bx - px[j], rby = by - py[j], rbz = bz - pz[j];
         const float rcx = cx - px[j], rcy = cy - py[j], rcz = cz - pz[j];
-        la[j] = rax * rax + ray * ray + raz * raz;
-        lb[j] = rbx * rbx + rby * rby + rbz * rbz;
-        lc[j] = rcx * rcx + rcy * rcy + rcz * rcz;
+        la[j] = fma(raz, raz, fma(ray, ray, rax * rax));
+        lb[j] = fma(rbz, rbz, fma(rby, rby, rbx * rbx));
+        lc[j] = fma(rcz, rcz, fma(rcy, rcy, rcx * rcx));
       }
       detail::sqrt_lanes<I, N>(la);
       detail::sqrt_lanes<I, N>(lb);
@@ -1448,19 +1555,21 @@ template <class T, int K = 4> class FastWindingNumber {
         const float rax = ax - px[j], ray = ay - py[j], raz = az - pz[j];
         const float rbx = bx - px[j], rby = by - py[j], rbz = bz - pz[j];
         const float rcx = cx - px[j], rcy = cy - py[j], rcz = cz - pz[j];
-        const float kx = rby * rcz - rbz * rcy, ky = rbz * rcx - rbx * rcz,
-                    kz = rbx * rcy - rby * rcx;
-        const float num = rax * kx + ray * ky + raz * kz;
+        const float kx = fma(rby, rcz, -(rbz * rcy)), ky = fma(rbz, rcx, -(rbx * rcz)),
+                    kz = fma(rbx, rcy, -(rby * rcx));
+        const float num = fma(raz, kz, fma(ray, ky, rax * kx));
         const float m = la[j] * lb[j] * lc[j];
-        const float den = m + (rax * rbx + ray * rby + raz * rbz) * lc[j] +
-                          (rbx * rcx + rby * rcy + rbz * rcz) * la[j] +
-                          (rcx * rax + rcy * ray + rcz * raz) * lb[j];
+        const float ab = fma(raz, rbz, fma(ray, rby, rax * rbx));
+        const float bc = fma(rbz, rcz, fma(rby, rcy, rbx * rcx));
+        const float ca = fma(rcz, raz, fma(rcy, ray, rcx * rax));
+        const float den = fma(ca, lb[j], fma(bc, la[j], fma(ab, lc[j], m)));
         const float an = num < 0 ? -num : num, ad = den < 0 ? -den : den;
-        const float d = kd * m, rlo = (an + ad) * 0.707f;
+        const float d = kd * m, h = an > ad ? an : ad;
         // Bitwise, not short-circuit: the loop stays branch-free (it vectorises).
-        const bool ok = (rlo > 2 * d) & ((an > d) | (den > d)) & (m > 1e-30f);
-        s[j] += 2.0f * detail::atan2_bounded_f(num, den);
-        err[j] += ok ? kpi * d / rlo + kat : inf;
+        const bool ok = (h > 2 * d) & ((an > d) | (den > d)) & (m > 1e-30f);
+        float inv_h;
+        s[j] += 2.0f * detail::atan2_bounded_f<I>(num, den, inv_h);
+        err[j] += ok ? fma(kpi * d, inv_h, kat) : inf;
       }
     }
   }
