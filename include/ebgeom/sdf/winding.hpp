@@ -337,6 +337,12 @@ sqrt_lanes_avx512(T* EBGEOM_RESTRICT x) noexcept {
   }
 }
 
+/// Bit j set where b[j] != 0, j < 32, for b[j] in {0, 1}: the byte compare and movemask of AVX2.
+EBGEOM_TARGET_AVX2 inline std::uint32_t lane_bits_avx2(const std::uint8_t* b) noexcept {
+  const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b));
+  return std::uint32_t(_mm256_movemask_epi8(_mm256_cmpgt_epi8(v, _mm256_setzero_si256())));
+}
+
 /// `rsqrt_lanes_f`'s estimate and Newton step with AVX2.
 template <int N>
 EBGEOM_TARGET_AVX2 EBGEOM_WINDING_KERNEL inline void
@@ -376,6 +382,28 @@ EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void sqrt_lanes(T* EBGEOM_RESTRICT x) 
     sqrt_lanes_native<N>(x);
 #else
   sqrt_lanes_native<N>(x);
+#endif
+}
+
+/// Bit j set where b[j] != 0 for j < 32 (b[j] in {0, 1}), in the kernels of instruction set I:
+/// one byte compare and movemask per 16 or 32 lanes where the instruction set has them (the loop
+/// of shifts and ors does not vectorise well), else that loop.
+template <Isa I>
+EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE std::uint32_t
+lane_bits32(const std::uint8_t* b) noexcept {
+#if EBGEOM_ISA_DISPATCH
+  if constexpr (I == Isa::avx2 || I == Isa::avx512) return lane_bits_avx2(b);
+#endif
+#if defined(__SSE2__)
+  const __m128i z = _mm_setzero_si128();
+  const __m128i lo = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b));
+  const __m128i hi = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + 16));
+  return std::uint32_t(_mm_movemask_epi8(_mm_cmpgt_epi8(lo, z))) |
+         (std::uint32_t(_mm_movemask_epi8(_mm_cmpgt_epi8(hi, z))) << 16);
+#else
+  std::uint32_t bits = 0;
+  for (int j = 0; j < 32; ++j) bits |= std::uint32_t(b[j] != 0) << j;
+  return bits;
 #endif
 }
 
@@ -887,8 +915,8 @@ template <class T, int K = 4> class FastWindingNumber {
       is_far[j] = r2 > far2;
       len[j] = is_far[j] ? r2 : T(1);
     }
-    std::uint32_t bits = 0;
-    for (int j = 0; j < P; ++j) bits |= std::uint32_t(is_far[j]) << j;
+    static_assert(P == 32, "lane_bits32 reads 32 lanes");
+    const std::uint32_t bits = detail::lane_bits32<I>(is_far);
     // A child no point of the packet takes as far adds +0 to every f[j], which leaves it as
     // it is (f starts at +0 and a sum is -0 only when both terms are): skip its far fields.
     if ((bits & mask) == 0) return bits;
