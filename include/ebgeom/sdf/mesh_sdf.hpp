@@ -144,6 +144,26 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
     return closest_within(p, r).distance;
   }
 
+  /// |`bounded(p, max_abs)`| bit for bit when it is <= `max_abs`, +infinity when the bounded
+  /// search finds no surface point (NaN for a non-finite p): the same search and closest point,
+  /// without the sign, so no pseudonormal is read (the split-sign protocol's `unsigned_within`).
+  T unsigned_bounded(const Vec3<T>& p, T max_abs) const noexcept {
+    const T r = max_abs + max_abs * (T(4) * std::numeric_limits<T>::epsilon());
+    if (!(r >= T(0))) return std::numeric_limits<T>::infinity();
+    if (!all_finite(p)) return std::numeric_limits<T>::quiet_NaN();
+    T best2 = std::nextafter(r * r, std::numeric_limits<T>::infinity());
+    std::uint32_t best = bvh::ChildRef::none;
+    seeded_nearest_slot(p, best2, best);
+    if (best == bvh::ChildRef::none) return std::numeric_limits<T>::infinity();
+    const TriBlock<T, W>& b = blocks_[best / std::uint32_t(W)];
+    const int l = int(best % std::uint32_t(W));
+    // As `finish` computes the magnitude: the same corners, the same closest point.
+    return std::sqrt(closest_point_triangle(p, {b.ax[l], b.ay[l], b.az[l]},
+                                            {b.bx[l], b.by[l], b.bz[l]},
+                                            {b.cx[l], b.cy[l], b.cz[l]})
+                         .distance2);
+  }
+
   /// Unsigned distance (no sign decision).
   T unsigned_distance(const Vec3<T>& p) const noexcept {
     if (!all_finite(p)) return std::numeric_limits<T>::quiet_NaN();

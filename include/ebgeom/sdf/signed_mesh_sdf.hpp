@@ -230,7 +230,7 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
   /// Split-sign protocol: |S(p)| bit for bit when it is <= `max`, +infinity otherwise (a search
   /// bounded by `max`, faster than `unsigned_distance` far from the surface).
   T unsigned_within(const Vec3<T>& p, T max) const noexcept {
-    const T d = std::abs(sdf_.bounded(p, max));
+    const T d = sdf_.unsigned_bounded(p, max); // no pseudonormal read
     return d <= max ? d : std::numeric_limits<T>::infinity();
   }
 

@@ -103,6 +103,36 @@ TYPED_TEST(MeshSdfTest, ClosestWithinIsANarrowBand) {
   EXPECT_EQ(sdf.closest_within({0, 0, 0}, T(-1)).triangle, MeshClosestPoint<T>::invalid_triangle);
 }
 
+// The unsigned bounded search (what winding-signed bands search) is |bounded| bit for bit within
+// the bound, +inf beyond it, on probes of every kind and at several bounds, the brute force
+// deciding which side of the bound each probe is.
+TYPED_TEST(MeshSdfTest, UnsignedBoundedIsTheMagnitudeOfBounded) {
+  using T = TypeParam;
+  const auto sdf = MeshSdf<T>::build(torus<T>()).value();
+  const auto ref = BruteForceMeshSdf<T>::build(torus<T>()).value();
+  std::size_t inside = 0, beyond = 0;
+  for (const T max : {T(0), T(0.01), T(0.1), T(0.4), std::numeric_limits<T>::infinity()}) {
+    for (const auto& p : probes(ref.mesh(), 600)) {
+      const T u = sdf.unsigned_bounded(p, max), b = sdf.bounded(p, max), d = std::abs(ref(p));
+      if (std::abs(b) <= max) {
+        ASSERT_TRUE(same_bits(u, std::abs(b))) << p << " max " << max << ": " << u << " " << b;
+        ASSERT_TRUE(same_bits(u, d)) << p;
+        ++inside;
+      } else {
+        ASSERT_GT(u, max) << p;
+        EXPECT_GT(d, max * T(0.999)) << p; // beyond the bound by the brute force too
+        ++beyond;
+      }
+    }
+  }
+  EXPECT_GT(inside, 1000u);
+  EXPECT_GT(beyond, 1000u);
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(sdf.unsigned_bounded({nan, 0, 0}, T(1))));
+  EXPECT_EQ(sdf.unsigned_bounded({0, 0, 0}, T(-1)), std::numeric_limits<T>::infinity());
+  EXPECT_EQ(sdf.unsigned_bounded({0, 0, 0}, nan), std::numeric_limits<T>::infinity());
+}
+
 // Queries start from the bound of a seed triangle (the one nearest to the centre of the query's
 // cell in an 8^3 grid over the box): equal to the brute force where that seed is itself the
 // nearest triangle or ties with others (cell centres, a cube's symmetric points), far outside the
