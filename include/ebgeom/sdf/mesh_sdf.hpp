@@ -155,13 +155,7 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
     std::uint32_t best = bvh::ChildRef::none;
     seeded_nearest_slot(p, best2, best);
     if (best == bvh::ChildRef::none) return std::numeric_limits<T>::infinity();
-    const TriBlock<T, W>& b = blocks_[best / std::uint32_t(W)];
-    const int l = int(best % std::uint32_t(W));
-    // As `finish` computes the magnitude: the same corners, the same closest point.
-    return std::sqrt(closest_point_triangle(p, {b.ax[l], b.ay[l], b.az[l]},
-                                            {b.bx[l], b.by[l], b.bz[l]},
-                                            {b.cx[l], b.cy[l], b.cz[l]})
-                         .distance2);
+    return std::sqrt(slot_closest(p, best).distance2); // the magnitude `finish` computes
   }
 
   /// Unsigned distance (no sign decision).
@@ -377,6 +371,15 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
     return {b.cx[l], b.cy[l], b.cz[l]};
   }
 
+  /// The closest point to `p` on the triangle in block slot `s`, from the corners as the block
+  /// holds them (what `finish` returns, and what the search's seeds and `unsigned_bounded` read).
+  TriangleClosestPoint<T> slot_closest(const Vec3<T>& p, std::size_t s) const noexcept {
+    const TriBlock<T, W>& b = blocks_[s / W];
+    const int l = int(s % W);
+    return closest_point_triangle(p, {b.ax[l], b.ay[l], b.az[l]}, {b.bx[l], b.by[l], b.bz[l]},
+                                  {b.cx[l], b.cy[l], b.cz[l]});
+  }
+
   /// The oriented boxes of every node's children (`bvh::NodeObbs`): around the corners of the
   /// triangles below the child (a leaf's, or all the leaves' of an inner child's subtree), one
   /// axis along their summed normals. Bounding inner children too lets the search drop whole
@@ -487,11 +490,7 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
     const T bound2 = best2;
     bool seeded = false;
     if (hint != bvh::ChildRef::none) {
-      const TriBlock<T, W>& b = blocks_[hint / std::uint32_t(W)];
-      const int l = int(hint % std::uint32_t(W));
-      const T d2 = closest_point_triangle(p, {b.ax[l], b.ay[l], b.az[l]},
-                                          {b.bx[l], b.by[l], b.bz[l]}, {b.cx[l], b.cy[l], b.cz[l]})
-                       .distance2;
+      const T d2 = slot_closest(p, hint).distance2;
       const T seed2 = bvh::prune_limit(d2, T(2) * slack_);
       if (seed2 < best2) best2 = seed2, seeded = true;
     } else if (!seed_tri_.empty()) {
@@ -570,10 +569,7 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
     detail::prefetch(mesh_.edge_links.data() + t);
     // The corners as the block holds them (the mesh's values, copied by `fill_blocks`): the
     // search has just read that block, where the mesh's arrays would be a cache miss each.
-    const TriBlock<T, W>& b = blocks_[best / std::uint32_t(W)];
-    const int l = int(best % std::uint32_t(W));
-    const TriangleClosestPoint<T> cp = closest_point_triangle(
-        p, {b.ax[l], b.ay[l], b.az[l]}, {b.bx[l], b.by[l], b.bz[l]}, {b.cx[l], b.cy[l], b.cz[l]});
+    const TriangleClosestPoint<T> cp = slot_closest(p, best);
     r.distance =
         signed_distance_from(p, cp.point, cp.distance2, feature_pseudonormal(mesh_, t, cp.feature));
     r.point = cp.point;
