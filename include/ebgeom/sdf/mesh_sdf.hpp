@@ -374,10 +374,7 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
   /// The closest point to `p` on the triangle in block slot `s`, from the corners as the block
   /// holds them (what `finish` returns, and what the search's seeds and `unsigned_bounded` read).
   TriangleClosestPoint<T> slot_closest(const Vec3<T>& p, std::size_t s) const noexcept {
-    const TriBlock<T, W>& b = blocks_[s / W];
-    const int l = int(s % W);
-    return closest_point_triangle(p, {b.ax[l], b.ay[l], b.az[l]}, {b.bx[l], b.by[l], b.bz[l]},
-                                  {b.cx[l], b.cy[l], b.cz[l]});
+    return closest_point_triangle(p, slot_corner(s, 0), slot_corner(s, 1), slot_corner(s, 2));
   }
 
   /// The oriented boxes of every node's children (`bvh::NodeObbs`): around the corners of the
@@ -550,11 +547,8 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
             seed_tri_.clear();
             return;
           }
-          const TriBlock<T, W>& b = blocks_[best / std::uint32_t(W)];
-          const int l = int(best % std::uint32_t(W));
           seed_tri_[std::size_t((z * seed_cells + y) * seed_cells + x)] = {
-              Vec3<T>{b.ax[l], b.ay[l], b.az[l]}, Vec3<T>{b.bx[l], b.by[l], b.bz[l]},
-              Vec3<T>{b.cx[l], b.cy[l], b.cz[l]}};
+              slot_corner(best, 0), slot_corner(best, 1), slot_corner(best, 2)};
         }
   }
 

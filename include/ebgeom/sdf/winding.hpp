@@ -509,9 +509,9 @@ inline constexpr double atan2_bounded_f_error = 2e-5;
 /// need far less than float's precision: the octant reduction of `atan2_bounded` with a = lo ·
 /// (1 / hi), `inv_hi` = 1 / hi (1 for x = y = 0, +inf where 1 / hi overflows) returned for the
 /// caller's own use, then atan(a) by the degree-9 polynomial of Abramowitz & Stegun 4.4.47
-/// (Horner steps by `fmadd_f<I>`). The
-/// bound: the polynomial with its coefficients as written errs by at most 1.15e-5 at the 2²⁴ + 1
-/// points a = i 2⁻²⁴ of [0, 1] (computed in double against atan), and |e'| <= Σ (2k + 1) |c_k| + 1
+/// (Horner steps by `fmadd_f<I>`). The bound: the polynomial with its coefficients as written errs
+/// by at most 1.15e-5 at the 2²⁴ + 1 points a = i 2⁻²⁴ of [0, 1] (computed in double against atan),
+/// and |e'| <= Σ (2k + 1) |c_k| + 1
 /// <= 4.68, so |e| <= 1.15e-5 + 4.68 · 2⁻²⁵ <= 1.17e-5 on [0, 1]; the coefficients rounded to
 /// float add u Σ |c_k| <= 1e-7 (u = 2⁻²⁴), a's two roundings 2 u a |p'| <= 4.4e-7, the Horner
 /// steps (|t| <= 1 throughout, at most two roundings per step, propagated through factors a² <=
