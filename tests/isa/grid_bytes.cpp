@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// SPDX-FileCopyrightText: 2026 The ebgeom authors
+// Writes the bytes of a few grids to the file named by its argument: an analytic scene (shapes,
+// smooth CSG) sampled densely over its padded bounds, and narrow bands of a closed and an open
+// mesh (pseudonormal and fast winding signs). Built twice (tests/CMakeLists.txt): with the
+// build's flags, and with AVX2/FMA (or AVX-512) plus -ffp-contract=off, as EBGEOM_NATIVE builds
+// are; the test compares the two files byte for byte. Each program is a whole program of its own,
+// so no inline function is shared between the two builds (as it would be between two translation
+// units of one program).
+#include <cstdio>
+#include <vector>
+
+#include "ebgeom/eval/grid.hpp"
+#include "ebgeom/eval/sparse_grid.hpp"
+#include "ebgeom/mesh/generate.hpp"
+#include "ebgeom/sdf/csg.hpp"
+#include "ebgeom/sdf/mesh_sdf.hpp"
+#include "ebgeom/sdf/shapes.hpp"
+#include "ebgeom/sdf/signed_mesh_sdf.hpp"
+
+using namespace ebgeom;
+
+namespace {
+
+template <class V> void put(std::FILE* f, const std::vector<V>& v) {
+  if (!v.empty()) std::fwrite(v.data(), sizeof(V), v.size(), f);
+}
+
+// The box the command line samples by default: the bounds padded by a fraction of each extent.
+template <class T> GridSpec<T> padded(const Aabb<T>& b, std::size_t n) {
+  const Vec3<T> e = b.extent();
+  const Vec3<T> pad = e * T(0.07);
+  return GridSpec<T>::cells(Aabb<T>(b.lo - pad, b.hi + pad), n);
+}
+
+template <class T> void scene(std::FILE* f) {
+  const auto s = smooth_unite(Torus<T>{{T(0.1), T(-0.2), T(0.05)}, T(0.8), T(0.27)},
+                              Sphere<T>{{T(0.45), T(0.3), T(0.2)}, T(0.55)}, T(0.13));
+  const GridSpec<T> spec = padded(s.bounds(), 40);
+  std::vector<T> v(spec.size());
+  if (!sample_grid(s, spec, Span<T>(v))) std::abort();
+  put(f, v);
+}
+
+template <class T> PolygonSoup<T> open_torus() {
+  PolygonSoup<T> t = make_torus<T>(T(1), T(0.35), 40, 20).value();
+  PolygonSoup<T> o;
+  o.vertices = t.vertices;
+  for (std::size_t i = 0; i < t.face_count(); ++i) {
+    if (i % 37 == 5) continue; // holes
+    for (Index c : t.face(i)) o.indices.push_back(c);
+    o.offsets.push_back(Index(o.indices.size()));
+  }
+  return o;
+}
+
+template <class S> void band(std::FILE* f, const S& sdf, const Aabb<sdf_scalar_t<S>>& bounds) {
+  using T = sdf_scalar_t<S>;
+  const GridSpec<T> spec = padded(bounds, 64);
+  GridOptions opt;
+  opt.band = double(norm(spec.spacing())) * 2;
+  const SparseGrid<T> g = sample_grid_sparse(sdf, spec, opt).value();
+  put(f, g.kept_tiles);
+  put(f, g.values);
+}
+
+template <class T> void meshes(std::FILE* f) {
+  const PolygonSoup<T> closed = make_torus<T>(T(1), T(0.35), 40, 20).value();
+  const auto ms = MeshSdf<T>::build(closed).value();
+  band(f, ms, ms.bounds());
+  SignOptions so;
+  so.mode = SignMode::fast_winding;
+  const auto fw = SignedMeshSdf<T>::build(open_torus<T>(), so).value();
+  band(f, fw, fw.bounds());
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) return 2;
+  std::FILE* f = std::fopen(argv[1], "wb");
+  if (f == nullptr) return 3;
+  scene<float>(f);
+  scene<double>(f);
+  meshes<float>(f);
+  meshes<double>(f);
+  return std::fclose(f) == 0 ? 0 : 4;
+}
