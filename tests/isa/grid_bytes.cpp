@@ -8,6 +8,7 @@
 // so no inline function is shared between the two builds (as it would be between two translation
 // units of one program).
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "ebgeom/eval/grid.hpp"
