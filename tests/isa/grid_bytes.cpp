@@ -27,7 +27,7 @@ template <class V> void put(std::FILE* f, const std::vector<V>& v) {
   if (!v.empty()) std::fwrite(v.data(), sizeof(V), v.size(), f);
 }
 
-// The box the command line samples by default: the bounds padded by a fraction of each extent.
+// A box as the command line samples by default: the bounds padded by a fraction of each extent.
 template <class T> GridSpec<T> padded(const Aabb<T>& b, std::size_t n) {
   const Vec3<T> e = b.extent();
   const Vec3<T> pad = e * T(0.07);
@@ -47,17 +47,14 @@ template <class T> PolygonSoup<T> open_torus() {
   PolygonSoup<T> t = make_torus<T>(T(1), T(0.35), 40, 20).value();
   PolygonSoup<T> o;
   o.vertices = t.vertices;
-  for (std::size_t i = 0; i < t.face_count(); ++i) {
-    if (i % 37 == 5) continue; // holes
-    for (Index c : t.face(i)) o.indices.push_back(c);
-    o.offsets.push_back(Index(o.indices.size()));
-  }
+  for (std::size_t i = 0; i < t.face_count(); ++i)
+    if (i % 37 != 5) o.add_face(t.face(i)); // the others leave holes
   return o;
 }
 
-template <class S> void band(std::FILE* f, const S& sdf, const Aabb<sdf_scalar_t<S>>& bounds) {
+template <class S> void band(std::FILE* f, const S& sdf) {
   using T = sdf_scalar_t<S>;
-  const GridSpec<T> spec = padded(bounds, 64);
+  const GridSpec<T> spec = padded(sdf.bounds(), 64);
   GridOptions opt;
   opt.band = double(norm(spec.spacing())) * 2;
   const SparseGrid<T> g = sample_grid_sparse(sdf, spec, opt).value();
@@ -68,11 +65,11 @@ template <class S> void band(std::FILE* f, const S& sdf, const Aabb<sdf_scalar_t
 template <class T> void meshes(std::FILE* f) {
   const PolygonSoup<T> closed = make_torus<T>(T(1), T(0.35), 40, 20).value();
   const auto ms = MeshSdf<T>::build(closed).value();
-  band(f, ms, ms.bounds());
+  band(f, ms);
   SignOptions so;
   so.mode = SignMode::fast_winding;
   const auto fw = SignedMeshSdf<T>::build(open_torus<T>(), so).value();
-  band(f, fw, fw.bounds());
+  band(f, fw);
 }
 
 } // namespace
