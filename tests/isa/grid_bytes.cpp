@@ -27,11 +27,9 @@ template <class V> void put(std::FILE* f, const std::vector<V>& v) {
   if (!v.empty()) std::fwrite(v.data(), sizeof(V), v.size(), f);
 }
 
-// A box as the command line samples by default: the bounds padded by a fraction of each extent.
+// A box as the command line samples by default: the bounds grown by 10% of the largest extent.
 template <class T> GridSpec<T> padded(const Aabb<T>& b, std::size_t n) {
-  const Vec3<T> e = b.extent();
-  const Vec3<T> pad = e * T(0.07);
-  return GridSpec<T>::cells(Aabb<T>(b.lo - pad, b.hi + pad), n);
+  return GridSpec<T>::cells(b.grown(T(0.1) * max_component(b.extent())), n);
 }
 
 template <class T> void scene(std::FILE* f) {
@@ -43,12 +41,12 @@ template <class T> void scene(std::FILE* f) {
   put(f, v);
 }
 
-template <class T> PolygonSoup<T> open_torus() {
-  PolygonSoup<T> t = make_torus<T>(T(1), T(0.35), 40, 20).value();
+// `t` with some faces left out (the holes of an open mesh).
+template <class T> PolygonSoup<T> with_holes(const PolygonSoup<T>& t) {
   PolygonSoup<T> o;
   o.vertices = t.vertices;
   for (std::size_t i = 0; i < t.face_count(); ++i)
-    if (i % 37 != 5) o.add_face(t.face(i)); // the others leave holes
+    if (i % 37 != 5) o.add_face(t.face(i));
   return o;
 }
 
@@ -68,7 +66,7 @@ template <class T> void meshes(std::FILE* f) {
   band(f, ms);
   SignOptions so;
   so.mode = SignMode::fast_winding;
-  const auto fw = SignedMeshSdf<T>::build(open_torus<T>(), so).value();
+  const auto fw = SignedMeshSdf<T>::build(with_holes(closed), so).value();
   band(f, fw);
 }
 
