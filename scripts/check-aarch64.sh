@@ -6,6 +6,7 @@
 # fused multiply-adds in the base instruction set) and runs them under qemu-user. Checks results,
 # not speed (an emulator says nothing about speed).
 # Usage: sh scripts/check-aarch64.sh [--quick] [build-dir]   (as root, or with sudo available)
+# Exit status: 0 all passed, 1 a build or a test failed, 3 the packages could not be installed.
 #   --quick: without the tests that take minutes under the emulator (the band-against-dense-grid
 #            comparisons, a million copies of one triangle, thread-count invariance); every kernel
 #            is still compared with brute force or the per-point values. Without it, every test of
@@ -19,13 +20,20 @@ if [ "${1:-}" = "--quick" ]; then
 fi
 b=${1:-build/aarch64}
 
+# The packages; exit status 3 (not 1) when they cannot be installed, so that callers can tell a
+# machine without them from a failing test.
 SUDO=""
 [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null 2>&1 && SUDO=sudo
 if ! dpkg --print-foreign-architectures | grep -qx arm64; then
-  $SUDO dpkg --add-architecture arm64
-  $SUDO apt-get update -qq
+  $SUDO dpkg --add-architecture arm64 && $SUDO apt-get update -qq || {
+    echo "check-aarch64: cannot add Debian's arm64 architecture" >&2
+    exit 3
+  }
 fi
-sh scripts/install-deps.sh g++-aarch64-linux-gnu qemu-user libgtest-dev:arm64
+sh scripts/install-deps.sh g++-aarch64-linux-gnu qemu-user libgtest-dev:arm64 || {
+  echo "check-aarch64: cannot install g++-aarch64-linux-gnu, qemu-user and libgtest-dev:arm64" >&2
+  exit 3
+}
 
 cmake -S . -B "$b" -G Ninja -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/aarch64-linux-gnu.cmake \
   -DCMAKE_BUILD_TYPE=Release -DEBGEOM_ASSERTS=ON -DEBGEOM_WERROR=ON -DEBGEOM_BUILD_CLI=OFF \
