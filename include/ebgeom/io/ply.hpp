@@ -465,11 +465,10 @@ Result<PolygonSoup<T>, ParseError> parse_ply(ByteView bytes, const ReadOptions& 
         ok = b.vertices(el, err);
       else if (el.name == "face" || el.name == "tristrips")
         ok = b.faces(el, el.name == "tristrips", err);
-      else if (!el.properties.empty()) {
+      else {
         ok = true;
-        for (std::uint64_t r = 0; r < el.count && ok; ++r) ok = b.skip_record(el, err);
-      } else {
-        ok = true; // no properties: nothing to read, however many entries it declares
+        if (!el.properties.empty()) // without properties nothing to read, whatever its count
+          for (std::uint64_t r = 0; r < el.count && ok; ++r) ok = b.skip_record(el, err);
       }
       if (!ok) return false;
     }
