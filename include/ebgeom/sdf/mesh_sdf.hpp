@@ -155,10 +155,14 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
     std::uint32_t best = bvh::ChildRef::none;
     seeded_nearest_slot(p, best2, best);
     if (best == bvh::ChildRef::none) return std::numeric_limits<T>::infinity();
-    return std::sqrt(slot_closest(p, best).distance2); // the magnitude `finish` computes
+    // best2 is the block kernel's squared distance to the slot `best`, the same bits as
+    // `closest_point_triangle` gives (geom/tri_block.hpp): the magnitude `finish` computes,
+    // without computing the closest point again.
+    return std::sqrt(best2);
   }
 
-  /// Unsigned distance (no sign decision).
+  /// Unsigned distance: |(*this)(p)| bit for bit (the search's own squared distance, as
+  /// `unsigned_bounded`), with no closest point or sign decision.
   T unsigned_distance(const Vec3<T>& p) const noexcept {
     if (!all_finite(p)) return std::numeric_limits<T>::quiet_NaN();
     T best2 = std::numeric_limits<T>::infinity();
@@ -500,15 +504,32 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
       }
       const std::array<Vec3<T>, 3>& t =
           seed_tri_[std::size_t((c[2] * seed_cells + c[1]) * seed_cells + c[0])];
-      const T d2 = closest_point_triangle(p, t[0], t[1], t[2]).distance2;
-      const T seed2 = bvh::prune_limit(d2, T(2) * slack_);
-      if (seed2 < best2) best2 = seed2, seeded = true;
+      // A search bounded by a band seldom finds its seed within the bound: the triangle's box
+      // first, which rules it out for a fraction of the closest point's cost. (A seed only
+      // prunes, so leaving one out never changes the result.)
+      if (!(best2 < std::numeric_limits<T>::infinity()) || box_distance2(p, t) < best2) {
+        const T d2 = closest_point_triangle(p, t[0], t[1], t[2]).distance2;
+        const T seed2 = bvh::prune_limit(d2, T(2) * slack_);
+        if (seed2 < best2) best2 = seed2, seeded = true;
+      }
     }
     nearest_slot(p, best2, best);
     if (seeded && best == bvh::ChildRef::none) { // never expected: the seed's own triangle is
       best2 = bound2;                            // below its bound
       nearest_slot(p, best2, best);
     }
+  }
+
+  /// Squared distance from `p` to the box of triangle `t`.
+  static T box_distance2(const Vec3<T>& p, const std::array<Vec3<T>, 3>& t) noexcept {
+    T s = 0;
+    for (int k = 0; k < 3; ++k) {
+      const T lo = std::min({t[0][k], t[1][k], t[2][k]}),
+              hi = std::max({t[0][k], t[1][k], t[2][k]});
+      const T d = std::max({lo - p[k], p[k] - hi, T(0)});
+      s += d * d;
+    }
+    return s;
   }
 
   /// `(*this)(p)`, its search seeded by slot `prev` (see `eval`), which becomes `p`'s nearest slot

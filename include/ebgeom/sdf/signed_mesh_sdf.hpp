@@ -224,8 +224,9 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
     return with_sign(std::abs(v), p);
   }
 
-  /// Unsigned distance: |(*this)(p)| bit for bit (NaN for a non-finite p).
-  T unsigned_distance(const Vec3<T>& p) const noexcept { return std::abs(sdf_(p)); }
+  /// Unsigned distance: |(*this)(p)| bit for bit (NaN for a non-finite p), without the closest
+  /// point and its pseudonormal (`MeshSdf::unsigned_distance`).
+  T unsigned_distance(const Vec3<T>& p) const noexcept { return sdf_.unsigned_distance(p); }
 
   /// Split-sign protocol: |S(p)| bit for bit when it is <= `max`, +infinity otherwise (a search
   /// bounded by `max`, faster than `unsigned_distance` far from the surface).

@@ -19,6 +19,8 @@
 namespace ebgeom {
 namespace {
 
+template <class T> bool same_bits(T a, T b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
+
 template <class T> class SignedMeshSdfTest : public ::testing::Test {};
 TYPED_TEST_SUITE(SignedMeshSdfTest, test::FloatTypes);
 
@@ -88,6 +90,53 @@ TYPED_TEST(SignedMeshSdfTest, BoundedIsTheValueWithinItsBoundInEveryMode) {
   const auto s = with_mode(ball, SignMode::fast_winding);
   const T nan = std::numeric_limits<T>::quiet_NaN();
   EXPECT_TRUE(std::isnan(s.bounded({nan, T(0), T(0)}, T(1))));
+}
+
+// The split-sign protocol that banded grids use (`unsigned_distance`, `unsigned_within`,
+// `sign_at`) rebuilds every mode's value bit for bit: the unsigned searches take the magnitude
+// from the search's own squared distance, not from a second closest-point computation, so this
+// checks that both give the same bits, on a closed and an open mesh, at random points and at
+// points next to the surface (on vertices, edges and faces).
+TYPED_TEST(SignedMeshSdfTest, SplitSignPartsRebuildTheValueInEveryMode) {
+  using T = TypeParam;
+  static_assert(has_split_sign_v<SignedMeshSdf<T>>);
+  const PolygonSoup<T> ball = make_icosphere<T>(3).value();
+  for (const PolygonSoup<T>& soup : {ball, test::remove_cap(ball, T(0.3))}) {
+    std::vector<Vec3<T>> pts =
+        test::random_points(make_triangle_mesh(soup).value().bounds().grown(T(0.5)), 1500, 7);
+    for (std::size_t v = 0; v < soup.vertices.size(); v += 2)
+      for (const T k : {T(0), T(1e-5), T(-1e-5), T(1e-2), T(-3e-2)})
+        pts.push_back(soup.vertices[v] * (T(1) + k));
+    for (std::size_t i = 0; i < soup.face_count(); ++i) {
+      const auto f = soup.face(i);
+      const Vec3<T> a = soup.vertices[f[0]], b = soup.vertices[f[1]], c = soup.vertices[f[2]];
+      pts.push_back((a + b) * T(0.5));               // on an edge
+      pts.push_back((a + b + c) * (T(1.01) / T(3))); // off a face
+    }
+    std::size_t within = 0, beyond = 0;
+    for (SignMode m : all_modes) {
+      const auto s = with_mode(soup, m);
+      for (const auto& p : pts) {
+        const T v = s(p), u = s.unsigned_distance(p);
+        ASSERT_TRUE(same_bits(u, std::abs(v))) << to_string(m) << " " << p << ": " << u;
+        if (v != T(0)) {
+          ASSERT_TRUE(same_bits(apply_sign(u, s.sign_at(p)), v)) << to_string(m) << " " << p;
+        }
+        for (const T bound : {T(0.01), T(0.1)}) {
+          const T w = s.unsigned_within(p, bound);
+          if (std::abs(v) <= bound) {
+            ++within;
+            ASSERT_TRUE(same_bits(w, std::abs(v))) << to_string(m) << " " << p;
+          } else {
+            ++beyond;
+            ASSERT_EQ(w, std::numeric_limits<T>::infinity()) << to_string(m) << " " << p;
+          }
+        }
+      }
+    }
+    EXPECT_GT(within, 2000u);
+    EXPECT_GT(beyond, 2000u);
+  }
 }
 
 TYPED_TEST(SignedMeshSdfTest, BatchSignsAreThePointSignsInEveryMode) {
