@@ -243,6 +243,20 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
   /// thread-safe.
   void eval_lattice(Span<const Vec3<T>> pts, const std::array<std::size_t, 3>& dims,
                     Span<T> out) const {
+    lattice<false>(pts, dims, out);
+  }
+
+  /// `eval_lattice` without the sign: `out[l] = unsigned_distance(pts[l])` bit for bit (the
+  /// search's own squared distance, as `unsigned_distance`: no closest point, no pseudonormal).
+  /// What grids with a winding sign evaluate before they sign the samples.
+  void unsigned_lattice(Span<const Vec3<T>> pts, const std::array<std::size_t, 3>& dims,
+                        Span<T> out) const {
+    lattice<true>(pts, dims, out);
+  }
+
+ private:
+  template <bool Unsigned>
+  void lattice(Span<const Vec3<T>> pts, const std::array<std::size_t, 3>& dims, Span<T> out) const {
     const std::size_t n = dims[0] * dims[1] * dims[2];
     EBGEOM_ASSERT(pts.size() == n && out.size() == n);
     if (n == 0) return;
@@ -258,17 +272,26 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
           ok = q.x <= pts[l].x && q.y <= pts[l].y && q.z <= pts[l].z;
         }
       if (!ok) {
-        for (std::size_t i = 0; i < n; ++i) out[i] = (*this)(pts[i]);
+        for (std::size_t i = 0; i < n; ++i)
+          out[i] = Unsigned ? unsigned_distance(pts[i]) : (*this)(pts[i]);
         return;
       }
     }
+    // Unsigned: each sample's squared distance, written into `out` by the search.
     const std::vector<std::uint32_t> slot = with_active_isa([&](auto isa) {
       return detail::MeshTileEval<T, K, W, decltype(isa)::value>(block_search(), plane_margin_)
-          .nearest_slots(pts.data(), dims);
+          .nearest_slots(pts.data(), dims, Unsigned ? out.data() : nullptr);
     });
-    for (std::size_t l = 0; l < n; ++l) out[l] = finish(pts[l], slot[l]).distance;
+    if constexpr (Unsigned) {
+      for (std::size_t l = 0; l < n; ++l)
+        out[l] =
+            slot[l] == bvh::ChildRef::none ? std::numeric_limits<T>::infinity() : std::sqrt(out[l]);
+    } else {
+      for (std::size_t l = 0; l < n; ++l) out[l] = finish(pts[l], slot[l]).distance;
+    }
   }
 
+ public:
   /// Moves the vertices: `moved` must have the same faces as the mesh was built from (same
   /// triangulation). Normals are recomputed, boxes refitted; the tree topology is kept (queries
   /// stay exact; their speed degrades if the motion is large — rebuild then).

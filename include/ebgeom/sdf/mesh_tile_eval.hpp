@@ -149,11 +149,19 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
   /// The nearest slot of each of the `dims[0] * dims[1] * dims[2]` finite samples `pts` (x
   /// fastest), equal to `BlockSearch::nearest_slot` from an infinite bound. Allocates
   /// O(candidate leaves) scratch; thread-safe.
+  /// `best2`, when not null, receives each sample's squared distance to its slot as the block
+  /// kernel computes it: the bits of `closest_point_triangle`'s (`geom/tri_block.hpp`).
   std::vector<std::uint32_t> nearest_slots(const Vec3<T>* pts,
-                                           const std::array<std::size_t, 3>& dims) const {
+                                           const std::array<std::size_t, 3>& dims,
+                                           T* best2 = nullptr) const {
     const std::size_t n = dims[0] * dims[1] * dims[2];
-    LatticeJob job{pts, dims, std::vector<std::uint32_t>(n, bvh::ChildRef::none),
-                   {},  {},   bvh::ChildRef::none};
+    LatticeJob job{pts,
+                   dims,
+                   std::vector<std::uint32_t>(n, bvh::ChildRef::none),
+                   best2,
+                   {},
+                   {},
+                   bvh::ChildRef::none};
     job.d2.resize(64);
     MeshTileKernels<I>::solve_lattice(*this, job, {{0, 0, 0}}, dims, nullptr, 0);
     return std::move(job.slot);
@@ -219,6 +227,7 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
     const Vec3<T>* pts;
     std::array<std::size_t, 3> dims;
     std::vector<std::uint32_t> slot; ///< nearest slot per sample (none = not searched yet)
+    T* best2;                        ///< per sample, the search's squared distance (or null)
     LeafList lists[8];               ///< one per recursion level
     std::vector<T> d2;               ///< box distances scratch
     std::uint32_t last;              ///< nearest slot of the last sample searched
@@ -269,9 +278,10 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
   }
 
   /// Nearest slot of `p` among the leaves of `list` (a superset of the leaves the per-point
-  /// search needs), starting from the block of slot `seed` (or none).
+  /// search needs), starting from the block of slot `seed` (or none); its squared distance in
+  /// `best2`.
   std::uint32_t scan_list_inline(const LeafList& list, LeafList& pl, const Vec3<T>& p,
-                                 std::uint32_t seed, std::vector<T>& d2s) const noexcept {
+                                 std::uint32_t seed, std::vector<T>& d2s, T& best2) const noexcept {
     T b2 = std::numeric_limits<T>::infinity();
     std::uint32_t best = bvh::ChildRef::none;
     std::uint32_t seed_block = bvh::ChildRef::none;
@@ -356,6 +366,7 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
         r = std::sqrt(lim) * (T(1) + rel) + plane_margin_;
       }
     }
+    best2 = b2;
     return best;
   }
 
@@ -383,9 +394,12 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
         std::uint32_t best = bvh::ChildRef::none;
         MeshSearchKernels<I>::nearest_slot(s_, q, b2, best);
         job.slot[qi] = best;
+        if (job.best2 != nullptr) job.best2[qi] = b2;
       } else {
+        T b2;
         job.slot[qi] =
-            MeshTileKernels<I>::scan_list(*this, *parent, job.lists[0], q, job.last, job.d2);
+            MeshTileKernels<I>::scan_list(*this, *parent, job.lists[0], q, job.last, job.d2, b2);
+        if (job.best2 != nullptr) job.best2[qi] = b2;
       }
       job.last = job.slot[qi];
     }
@@ -431,8 +445,10 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
         for (std::size_t x = a[0]; x < b[0]; ++x) {
           const std::size_t l = index(x, y, z);
           if (job.slot[l] != bvh::ChildRef::none) continue;
+          T b2;
           job.slot[l] = MeshTileKernels<I>::scan_list(*this, list, job.lists[0], job.pts[l],
-                                                      job.last, job.d2);
+                                                      job.last, job.d2, b2);
+          if (job.best2 != nullptr) job.best2[l] = b2;
           job.last = job.slot[l];
         }
   }
@@ -481,8 +497,8 @@ template <class T, int K, int W, Isa I = native_isa> class MeshTileEval {
   template <class E, class List, class T>                                                          \
   TARGET EBGEOM_FLATTEN static std::uint32_t scan_list(const E& e, const List& list, List& pl,     \
                                                        const Vec3<T>& p, std::uint32_t seed,       \
-                                                       std::vector<T>& d2s) noexcept {             \
-    return e.scan_list_inline(list, pl, p, seed, d2s);                                             \
+                                                       std::vector<T>& d2s, T& best2) noexcept {   \
+    return e.scan_list_inline(list, pl, p, seed, d2s, best2);                                      \
   }
 
 template <Isa I> struct MeshTileKernels { EBGEOM_MESH_TILE_KERNELS(I, ) };

@@ -317,13 +317,17 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
     if (mode_ == SignMode::fast_winding) fast_.scope(box, out.range_);
   }
 
-  /// Values at a tile of lattice samples, bit for bit `(*this)(pts[l])`: the distances of
-  /// `MeshSdf::eval_lattice`, then the sign of the mode per sample (the fast winding sign in
-  /// packets of nearby samples, `signs_at`).
+  /// Values at a tile of lattice samples, bit for bit `(*this)(pts[l])`: `MeshSdf::eval_lattice`
+  /// with the pseudonormal sign; otherwise the unsigned distances of `MeshSdf::unsigned_lattice`,
+  /// then the sign of the mode per sample (the fast winding sign in packets of nearby samples,
+  /// `signs_at`).
   void eval_lattice(Span<const Vec3<T>> pts, const std::array<std::size_t, 3>& dims,
                     Span<T> out) const {
-    sdf_.eval_lattice(pts, dims, out);
-    if (mode_ == SignMode::pseudonormal) return;
+    if (mode_ == SignMode::pseudonormal) {
+      sdf_.eval_lattice(pts, dims, out);
+      return;
+    }
+    sdf_.unsigned_lattice(pts, dims, out);
     if (mode_ != SignMode::fast_winding) {
       for (std::size_t l = 0; l < pts.size(); ++l) out[l] = with_sign(std::abs(out[l]), pts[l]);
       return;

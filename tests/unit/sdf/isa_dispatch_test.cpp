@@ -108,6 +108,10 @@ TYPED_TEST(IsaDispatchTest, EveryInstructionSetEqualsTheBruteForceBitForBit) {
       sdf.eval_lattice(tile, {8, 8, 8}, out);
       for (std::size_t l = 0; l < tile.size(); ++l)
         ASSERT_TRUE(same_bits(out[l], ref(tile[l]))) << to_string(isa) << " sample " << l;
+      sdf.unsigned_lattice(tile, {8, 8, 8}, out);
+      for (std::size_t l = 0; l < tile.size(); ++l)
+        ASSERT_TRUE(same_bits(out[l], std::abs(ref(tile[l]))))
+            << to_string(isa) << " unsigned sample " << l;
     }
   }
   set_isa(was);
