@@ -530,7 +530,8 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
       // A search bounded by a band seldom finds its seed within the bound: the triangle's box
       // first, which rules it out for a fraction of the closest point's cost. (A seed only
       // prunes, so leaving one out never changes the result.)
-      if (!(best2 < std::numeric_limits<T>::infinity()) || box_distance2(p, t) < best2) {
+      if (!(best2 < std::numeric_limits<T>::infinity()) ||
+          Aabb<T>(min(min(t[0], t[1]), t[2]), max(max(t[0], t[1]), t[2])).distance2(p) < best2) {
         const T d2 = closest_point_triangle(p, t[0], t[1], t[2]).distance2;
         const T seed2 = bvh::prune_limit(d2, T(2) * slack_);
         if (seed2 < best2) best2 = seed2, seeded = true;
@@ -541,18 +542,6 @@ template <class T, int K = default_arity<T>, int W = default_block_width<T>> cla
       best2 = bound2;                            // below its bound
       nearest_slot(p, best2, best);
     }
-  }
-
-  /// Squared distance from `p` to the box of triangle `t`.
-  static T box_distance2(const Vec3<T>& p, const std::array<Vec3<T>, 3>& t) noexcept {
-    T s = 0;
-    for (int k = 0; k < 3; ++k) {
-      const T lo = std::min({t[0][k], t[1][k], t[2][k]}),
-              hi = std::max({t[0][k], t[1][k], t[2][k]});
-      const T d = std::max({lo - p[k], p[k] - hi, T(0)});
-      s += d * d;
-    }
-    return s;
   }
 
   /// `(*this)(p)`, its search seeded by slot `prev` (see `eval`), which becomes `p`'s nearest slot
