@@ -11,7 +11,7 @@
 /// the patch's mean normal is about as thin as the patch is curved: on the meshes of
 /// docs/performance.md, queries scan 1.6 to 3.8 times fewer leaves with both bounds than with the
 /// axis-aligned boxes alone, and (with boxes for the inner children too) expand 1.2 to 1.9 times
-/// fewer nodes.
+/// fewer nodes (docs/dev/performance-log.md has the counts).
 ///
 /// `NodeObbs<T, K>` stores, structure of arrays like `WideNode`, per child: a centre, three unit
 /// axes and the half extents along them. `raise_dist2` computes the squared distance from `p` to

@@ -38,7 +38,7 @@ template <class T, int K, int W> struct BlockSearch {
   /// instruction set of the kernels (`core/isa.hpp`); `MeshSearchKernels<I>` compiles it for I.
   /// Without the farthest-box shrink of `bvh::nearest`: the queries start from a seed triangle's
   /// distance, which that shrink seldom lowers, and its extra box pass at each node on the way to
-  /// the first leaf made float queries 1-6% slower (docs/performance.md).
+  /// the first leaf made float queries 1-6% slower (docs/dev/performance-log.md).
   /// A child is entered only when its oriented box, too, is near enough (`bvh::NodeObbs`): on the
   /// meshes of docs/performance.md that scans 1.6-3.8x fewer blocks and expands 1.2-1.9x fewer
   /// nodes.
