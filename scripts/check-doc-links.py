@@ -96,6 +96,7 @@ def md_files(root):
 def check(root):
     bad = []
     for f in md_files(root):
+        rel = os.path.relpath(f, root)
         for no, line in prose_lines(f):
             line = re.sub(r"`[^`]*`", "", line)  # links inside inline code are not links
             targets = [m.group(1) for m in LINK.finditer(line)]
@@ -107,7 +108,6 @@ def check(root):
                     continue
                 path, _, frag = t.partition("#")
                 target = os.path.normpath(os.path.join(os.path.dirname(f), path)) if path else f
-                rel = os.path.relpath(f, root)
                 if not os.path.exists(target):
                     bad.append("%s:%d: %s: no such file" % (rel, no, t))
                 elif frag and target.endswith(".md") and frag not in anchors(target):
@@ -117,7 +117,8 @@ def check(root):
 
 
 def self_test():
-    """A small repository with one broken link of each kind must report exactly those."""
+    """A small tree of pages (no git checkout: every *.md file) with one broken link of each kind
+    must report exactly those."""
     d = tempfile.mkdtemp(prefix="ebgeom-doclinks-")
     try:
         files = {
