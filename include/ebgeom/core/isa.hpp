@@ -54,9 +54,23 @@ inline constexpr Isa native_isa =
 #define EBGEOM_ISA_DISPATCH 1
 #define EBGEOM_TARGET_AVX __attribute__((target("avx")))
 #define EBGEOM_TARGET_AVX2 __attribute__((target("avx2,fma,bmi,bmi2,lzcnt,popcnt,f16c")))
+// The AVX-512 kernels use 512-bit vectors throughout, whatever the translation unit's tuning:
+// GCC's tuning for Intel's AVX-512 CPUs (`-march=native` on Skylake-SP to Sapphire Rapids)
+// prefers 256-bit vectors for the loops it vectorises, while the kernels' intrinsics are 512-bit,
+// and data passed between the two widths through memory most likely waits for the stores (a
+// 512-bit store read back as two 256-bit halves, or the reverse, is not forwarded): on a Sapphire
+// Rapids VM the mixed kernels made the fast winding band take about a third longer than with
+// either width alone (docs/performance.md, "One vector width in the AVX-512 kernels"). Clang has
+// no such option in `target` (it would ignore the whole attribute), nor GCC before 8, so there
+// the loops follow the translation unit's tuning.
+#if defined(__clang__) || __GNUC__ < 8
+#define EBGEOM_AVX512_VECTOR_WIDTH
+#else
+#define EBGEOM_AVX512_VECTOR_WIDTH ",prefer-vector-width=512"
+#endif
 #define EBGEOM_TARGET_AVX512                                                                       \
   __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512cd,avx2,fma,bmi,bmi2,lzcnt,"     \
-                        "popcnt,f16c")))
+                        "popcnt,f16c" EBGEOM_AVX512_VECTOR_WIDTH)))
 #else
 #define EBGEOM_ISA_DISPATCH 0
 #define EBGEOM_TARGET_AVX
