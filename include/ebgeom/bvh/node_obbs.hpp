@@ -290,6 +290,56 @@ EBGEOM_TARGET_AVX inline void raise_dist2_avx(const NodeObbs<float, 8>& o, const
   _mm256_storeu_ps(d2, _mm256_max_ps(s, _mm256_loadu_ps(d2))); // a NaN s keeps d2
 }
 #endif
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+/// One axis of `raise_dist2_avx512`: the squared gap of the projection of `d` on axis a beyond h.
+EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline __m512
+obb_gap2_avx512(const float* ax, const float* ay, const float* az, const float* h, __m512 dx,
+                __m512 dy, __m512 dz) noexcept {
+  const __m512 t = _mm512_add_ps(
+      _mm512_add_ps(_mm512_mul_ps(_mm512_loadu_ps(ax), dx), _mm512_mul_ps(_mm512_loadu_ps(ay), dy)),
+      _mm512_mul_ps(_mm512_loadu_ps(az), dz));
+  const __m512 g = _mm512_maskz_max_ps(0xffff, _mm512_sub_ps(_mm512_abs_ps(t), _mm512_loadu_ps(h)),
+                                       _mm512_setzero_ps());
+  return _mm512_mul_ps(g, g);
+}
+
+/// K = 16 floats in one AVX-512 register.
+EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline void
+raise_dist2_avx512(const NodeObbs<float, 16>& o, const Vec3<float>& p, float (&d2)[16]) noexcept {
+  const __m512 dx = _mm512_sub_ps(_mm512_set1_ps(p.x), _mm512_loadu_ps(o.cx));
+  const __m512 dy = _mm512_sub_ps(_mm512_set1_ps(p.y), _mm512_loadu_ps(o.cy));
+  const __m512 dz = _mm512_sub_ps(_mm512_set1_ps(p.z), _mm512_loadu_ps(o.cz));
+  const __m512 s = _mm512_add_ps(_mm512_add_ps(obb_gap2_avx512(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
+                                               obb_gap2_avx512(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
+                                 obb_gap2_avx512(o.nx, o.ny, o.nz, o.hn, dx, dy, dz));
+  _mm512_storeu_ps(d2, _mm512_maskz_max_ps(0xffff, s, _mm512_loadu_ps(d2))); // a NaN s keeps d2
+}
+
+/// One axis of `raise_dist2_avx512` for eight doubles.
+EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline __m512d
+obb_gap2_avx512(const double* ax, const double* ay, const double* az, const double* h, __m512d dx,
+                __m512d dy, __m512d dz) noexcept {
+  const __m512d t = _mm512_add_pd(
+      _mm512_add_pd(_mm512_mul_pd(_mm512_loadu_pd(ax), dx), _mm512_mul_pd(_mm512_loadu_pd(ay), dy)),
+      _mm512_mul_pd(_mm512_loadu_pd(az), dz));
+  const __m512d g = _mm512_maskz_max_pd(0xff, _mm512_sub_pd(_mm512_abs_pd(t), _mm512_loadu_pd(h)),
+                                        _mm512_setzero_pd());
+  return _mm512_mul_pd(g, g);
+}
+
+/// K = 8 doubles in one AVX-512 register.
+EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline void
+raise_dist2_avx512(const NodeObbs<double, 8>& o, const Vec3<double>& p, double (&d2)[8]) noexcept {
+  const __m512d dx = _mm512_sub_pd(_mm512_set1_pd(p.x), _mm512_loadu_pd(o.cx));
+  const __m512d dy = _mm512_sub_pd(_mm512_set1_pd(p.y), _mm512_loadu_pd(o.cy));
+  const __m512d dz = _mm512_sub_pd(_mm512_set1_pd(p.z), _mm512_loadu_pd(o.cz));
+  const __m512d s =
+      _mm512_add_pd(_mm512_add_pd(obb_gap2_avx512(o.ux, o.uy, o.uz, o.hu, dx, dy, dz),
+                                  obb_gap2_avx512(o.vx, o.vy, o.vz, o.hv, dx, dy, dz)),
+                    obb_gap2_avx512(o.nx, o.ny, o.nz, o.hn, dx, dy, dz));
+  _mm512_storeu_pd(d2, _mm512_maskz_max_pd(0xff, s, _mm512_loadu_pd(d2))); // a NaN s keeps d2
+}
+#endif
 } // namespace detail
 
 /// `d2[k] = max(d2[k], squared distance from p to child k's oriented box)` on
@@ -300,6 +350,12 @@ EBGEOM_TARGET_AVX inline void raise_dist2_avx(const NodeObbs<float, 8>& o, const
 template <Isa I = native_isa, class T, int K>
 EBGEOM_FORCE_INLINE void raise_dist2(const NodeObbs<T, K>& o, const Vec3<T>& p,
                                      T (&d2)[K]) noexcept {
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+  // One AVX-512 register per coordinate: eight doubles or sixteen floats.
+  if constexpr (I >= Isa::avx512 &&
+                ((std::is_same_v<T, double> && K == 8) || (std::is_same_v<T, float> && K == 16)))
+    return detail::raise_dist2_avx512(o, p, d2);
+#endif
 #if EBGEOM_ISA_DISPATCH || defined(__AVX__)
   // One AVX register per coordinate: four doubles or eight floats.
   if constexpr (I >= Isa::avx2 &&

@@ -30,6 +30,11 @@ template <class T, int K, class BV>
 inline constexpr bool has_avx_form = std::is_same_v<BV, Aabb<T>> &&
                                      ((std::is_same_v<T, float> && K == 8) ||
                                       (std::is_same_v<T, double> && K == 4));
+/// True for the node types with an AVX-512 form of the child distances (16 floats, 8 doubles).
+template <class T, int K, class BV>
+inline constexpr bool has_avx512_form = std::is_same_v<BV, Aabb<T>> &&
+                                        ((std::is_same_v<T, float> && K == 16) ||
+                                         (std::is_same_v<T, double> && K == 8));
 } // namespace ebgeom::bvh::detail
 
 namespace ebgeom::bvh {
@@ -161,11 +166,91 @@ EBGEOM_TARGET_AVX inline void child_far_dist2_avx(const WideNode<double, 4>& n,
 
 #endif
 
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+// The AVX-512 forms: K = 16 floats or K = 8 doubles in one 512-bit register per coordinate.
+EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline void
+child_dist2_avx512(const WideNode<float, 16>& n, const Vec3<float>& p, float (&d2)[16]) noexcept {
+  const __m512 z = _mm512_setzero_ps();
+  const __m512 px = _mm512_set1_ps(p.x), py = _mm512_set1_ps(p.y), pz = _mm512_set1_ps(p.z);
+  const __m512 dx =
+      _mm512_maskz_max_ps(0xffff,
+                          _mm512_maskz_max_ps(0xffff, _mm512_sub_ps(_mm512_loadu_ps(n.lo_x), px),
+                                              _mm512_sub_ps(px, _mm512_loadu_ps(n.hi_x))),
+                          z);
+  const __m512 dy =
+      _mm512_maskz_max_ps(0xffff,
+                          _mm512_maskz_max_ps(0xffff, _mm512_sub_ps(_mm512_loadu_ps(n.lo_y), py),
+                                              _mm512_sub_ps(py, _mm512_loadu_ps(n.hi_y))),
+                          z);
+  const __m512 dz =
+      _mm512_maskz_max_ps(0xffff,
+                          _mm512_maskz_max_ps(0xffff, _mm512_sub_ps(_mm512_loadu_ps(n.lo_z), pz),
+                                              _mm512_sub_ps(pz, _mm512_loadu_ps(n.hi_z))),
+                          z);
+  _mm512_storeu_ps(d2, _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
+                                     _mm512_mul_ps(dz, dz)));
+}
+
+EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline void
+child_far_dist2_avx512(const WideNode<float, 16>& n, const Vec3<float>& p,
+                       float (&d2)[16]) noexcept {
+  const __m512 px = _mm512_set1_ps(p.x), py = _mm512_set1_ps(p.y), pz = _mm512_set1_ps(p.z);
+  const __m512 dx = _mm512_maskz_max_ps(0xffff, _mm512_sub_ps(px, _mm512_loadu_ps(n.lo_x)),
+                                        _mm512_sub_ps(_mm512_loadu_ps(n.hi_x), px));
+  const __m512 dy = _mm512_maskz_max_ps(0xffff, _mm512_sub_ps(py, _mm512_loadu_ps(n.lo_y)),
+                                        _mm512_sub_ps(_mm512_loadu_ps(n.hi_y), py));
+  const __m512 dz = _mm512_maskz_max_ps(0xffff, _mm512_sub_ps(pz, _mm512_loadu_ps(n.lo_z)),
+                                        _mm512_sub_ps(_mm512_loadu_ps(n.hi_z), pz));
+  _mm512_storeu_ps(d2, _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)),
+                                     _mm512_mul_ps(dz, dz)));
+}
+
+EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline void
+child_dist2_avx512(const WideNode<double, 8>& n, const Vec3<double>& p, double (&d2)[8]) noexcept {
+  const __m512d z = _mm512_setzero_pd();
+  const __m512d px = _mm512_set1_pd(p.x), py = _mm512_set1_pd(p.y), pz = _mm512_set1_pd(p.z);
+  const __m512d dx =
+      _mm512_maskz_max_pd(0xff,
+                          _mm512_maskz_max_pd(0xff, _mm512_sub_pd(_mm512_loadu_pd(n.lo_x), px),
+                                              _mm512_sub_pd(px, _mm512_loadu_pd(n.hi_x))),
+                          z);
+  const __m512d dy =
+      _mm512_maskz_max_pd(0xff,
+                          _mm512_maskz_max_pd(0xff, _mm512_sub_pd(_mm512_loadu_pd(n.lo_y), py),
+                                              _mm512_sub_pd(py, _mm512_loadu_pd(n.hi_y))),
+                          z);
+  const __m512d dz =
+      _mm512_maskz_max_pd(0xff,
+                          _mm512_maskz_max_pd(0xff, _mm512_sub_pd(_mm512_loadu_pd(n.lo_z), pz),
+                                              _mm512_sub_pd(pz, _mm512_loadu_pd(n.hi_z))),
+                          z);
+  _mm512_storeu_pd(d2, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
+                                     _mm512_mul_pd(dz, dz)));
+}
+
+EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline void
+child_far_dist2_avx512(const WideNode<double, 8>& n, const Vec3<double>& p,
+                       double (&d2)[8]) noexcept {
+  const __m512d px = _mm512_set1_pd(p.x), py = _mm512_set1_pd(p.y), pz = _mm512_set1_pd(p.z);
+  const __m512d dx = _mm512_maskz_max_pd(0xff, _mm512_sub_pd(px, _mm512_loadu_pd(n.lo_x)),
+                                         _mm512_sub_pd(_mm512_loadu_pd(n.hi_x), px));
+  const __m512d dy = _mm512_maskz_max_pd(0xff, _mm512_sub_pd(py, _mm512_loadu_pd(n.lo_y)),
+                                         _mm512_sub_pd(_mm512_loadu_pd(n.hi_y), py));
+  const __m512d dz = _mm512_maskz_max_pd(0xff, _mm512_sub_pd(pz, _mm512_loadu_pd(n.lo_z)),
+                                         _mm512_sub_pd(_mm512_loadu_pd(n.hi_z), pz));
+  _mm512_storeu_pd(d2, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
+                                     _mm512_mul_pd(dz, dz)));
+}
+#endif
+
 /// `child_dist2` as the kernels of instruction set I compute it: the AVX forms where I (or the
 /// translation unit) has AVX, else the overloads above or the generic loops. Same values.
 template <Isa I, class T, int K, class BV>
 EBGEOM_FORCE_INLINE void node_dist2(const WideNode<T, K, BV>& n, const Vec3<T>& p,
                                     T (&d2)[K]) noexcept {
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+  if constexpr (I >= Isa::avx512 && has_avx512_form<T, K, BV>) return child_dist2_avx512(n, p, d2);
+#endif
 #if EBGEOM_ISA_DISPATCH
   if constexpr (I >= Isa::avx2 && has_avx_form<T, K, BV>) return child_dist2_avx(n, p, d2);
 #endif
@@ -176,6 +261,10 @@ EBGEOM_FORCE_INLINE void node_dist2(const WideNode<T, K, BV>& n, const Vec3<T>& 
 template <Isa I, class T, int K, class BV>
 EBGEOM_FORCE_INLINE void node_far_dist2(const WideNode<T, K, BV>& n, const Vec3<T>& p,
                                         T (&d2)[K]) noexcept {
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+  if constexpr (I >= Isa::avx512 && has_avx512_form<T, K, BV>)
+    return child_far_dist2_avx512(n, p, d2);
+#endif
 #if EBGEOM_ISA_DISPATCH
   if constexpr (I >= Isa::avx2 && has_avx_form<T, K, BV>) return child_far_dist2_avx(n, p, d2);
 #endif

@@ -194,21 +194,92 @@ EBGEOM_TARGET_AVX2 inline int order_children8(const float (&d2)[8], float lim,
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(key), sort8_keys(k));
   return _mm_popcnt_u32(unsigned(_mm256_movemask_ps(in)));
 }
+
+/// K = 8 doubles: compared in double, then keyed and sorted as eight floats (two AVX halves).
+EBGEOM_TARGET_AVX2 inline int order_children8(const double (&d2)[8], double lim,
+                                              std::uint32_t (&key)[8]) noexcept {
+  const __m256d lo = _mm256_loadu_pd(d2), hi = _mm256_loadu_pd(d2 + 4), l = _mm256_set1_pd(lim);
+  const __m256d in_lo = _mm256_cmp_pd(lo, l, _CMP_LT_OQ), in_hi = _mm256_cmp_pd(hi, l, _CMP_LT_OQ);
+  const __m256 d = _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
+  // The all-ones lanes of `in` (a quiet NaN) convert to all-ones floats, and zeros to zeros.
+  const __m256 in = _mm256_set_m128(_mm256_cvtpd_ps(in_hi), _mm256_cvtpd_ps(in_lo));
+  const __m256i bits =
+      _mm256_or_si256(_mm256_and_si256(_mm256_castps_si256(d), _mm256_set1_epi32(0x7ffffff8)),
+                      _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+  const __m256i k = _mm256_blendv_epi8(_mm256_set1_epi32(-1), bits, _mm256_castps_si256(in));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(key), sort8_keys(k));
+  return _mm_popcnt_u32(unsigned(_mm256_movemask_ps(in)));
+}
+
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+/// One layer of compare-exchanges on sixteen unsigned keys: each lane meets lane
+/// `partner[lane]`; the lanes set in `hi` keep the larger key, the others the smaller.
+EBGEOM_TARGET_AVX512 EBGEOM_FORCE_INLINE __m512i compare_exchange16(__m512i x, __m512i partner,
+                                                                    __mmask16 hi) noexcept {
+  const __m512i q = _mm512_maskz_permutexvar_epi32(0xffff, partner, x);
+  return _mm512_mask_blend_epi32(hi, _mm512_maskz_min_epu32(0xffff, x, q),
+                                 _mm512_maskz_max_epu32(0xffff, x, q));
+}
+
+/// Sorts sixteen 32-bit keys in one register (`order_children` for K = 16 floats) by Batcher's
+/// bitonic network (10 layers, 80 compare-exchanges), each layer one lane permutation, a min, a
+/// max and a blend. The keys are distinct, so the order is that of any correct sort.
+EBGEOM_TARGET_AVX512 EBGEOM_FORCE_INLINE __m512i sort16_keys(__m512i v) noexcept {
+  v = compare_exchange16(v, _mm512_setr_epi32(1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14),
+                         0x6666);
+  v = compare_exchange16(v, _mm512_setr_epi32(2, 3, 0, 1, 6, 7, 4, 5, 10, 11, 8, 9, 14, 15, 12, 13),
+                         0x3c3c);
+  v = compare_exchange16(v, _mm512_setr_epi32(1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14),
+                         0x5a5a);
+  v = compare_exchange16(v, _mm512_setr_epi32(4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11),
+                         0x0ff0);
+  v = compare_exchange16(v, _mm512_setr_epi32(2, 3, 0, 1, 6, 7, 4, 5, 10, 11, 8, 9, 14, 15, 12, 13),
+                         0x33cc);
+  v = compare_exchange16(v, _mm512_setr_epi32(1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14),
+                         0x55aa);
+  v = compare_exchange16(v, _mm512_setr_epi32(8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7),
+                         0xff00);
+  v = compare_exchange16(v, _mm512_setr_epi32(4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11),
+                         0xf0f0);
+  v = compare_exchange16(v, _mm512_setr_epi32(2, 3, 0, 1, 6, 7, 4, 5, 10, 11, 8, 9, 14, 15, 12, 13),
+                         0xcccc);
+  v = compare_exchange16(v, _mm512_setr_epi32(1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14),
+                         0xaaaa);
+  return v;
+}
+
+EBGEOM_TARGET_AVX512 inline int order_children16(const float (&d2)[16], float lim,
+                                                 std::uint32_t (&key)[16]) noexcept {
+  const __m512 d = _mm512_loadu_ps(d2);
+  const __mmask16 in = _mm512_cmp_ps_mask(d, _mm512_set1_ps(lim), _CMP_LT_OQ);
+  const __m512i bits =
+      _mm512_or_si512(_mm512_and_si512(_mm512_castps_si512(d), _mm512_set1_epi32(0x7ffffff0)),
+                      _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+  const __m512i k = _mm512_mask_blend_epi32(in, _mm512_set1_epi32(-1), bits);
+  _mm512_storeu_si512(key, sort16_keys(k));
+  return __builtin_popcount(unsigned(in));
+}
+
+#endif
 #endif
 
 /// Sorts the children with `d2[k] < lim` nearest first into `key` (`child_key<K>`, the others last
 /// as `excluded_key`; `key[j] & child_mask<K>` is the child) with a branch-free sorting network
 /// (odd-even transposition; for K = 8 the 19-comparator network), and returns their count. Replaces
 /// an insertion sort whose data-dependent branches mispredicted at every node. K = 4 (float or
-/// double) and K = 8 (float) on instruction set I with AVX2 take the vector networks above (same
-/// keys, same order).
+/// double) and K = 8 (float or double) on instruction set I with AVX2, and K = 16 (float) with
+/// AVX-512, take the vector networks above (same keys, same order).
 template <class T, int K, Isa I = native_isa>
 inline int order_children(const T (&d2)[K], T lim, std::uint32_t (&key)[K]) noexcept {
 #if EBGEOM_ISA_DISPATCH || defined(__AVX2__)
   if constexpr (I >= Isa::avx2 && K == 4 && (std::is_same_v<T, float> || std::is_same_v<T, double>))
     return order_children4(d2, lim, key);
-  if constexpr (I >= Isa::avx2 && K == 8 && std::is_same_v<T, float>)
+  if constexpr (I >= Isa::avx2 && K == 8 && (std::is_same_v<T, float> || std::is_same_v<T, double>))
     return order_children8(d2, lim, key);
+#endif
+#if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+  if constexpr (I >= Isa::avx512 && K == 16 && std::is_same_v<T, float>)
+    return order_children16(d2, lim, key);
 #endif
   int m = 0;
   for (int k = 0; k < K; ++k) {

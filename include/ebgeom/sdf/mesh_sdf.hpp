@@ -48,7 +48,9 @@ namespace ebgeom {
 /// Default BVH arity of `MeshSdf`: 8 for float (a node's eight child boxes and oriented boxes fill
 /// one AVX register per coordinate; a third fewer nodes per query than 4, 0.99-1.12x the
 /// throughput), 4 for double (8 was no faster; docs/dev/performance-log.md "Eight children per
-/// float node"). Like the block width it is fixed per type, never by the compile flags.
+/// float node"). Like the block width it is fixed per type, never by the compile flags. Twice the
+/// default (16 floats, 8 doubles: one AVX-512 register per coordinate) has AVX-512 node kernels
+/// but was 1-12% slower in float and no faster in double (`bench/arity_bench.cpp`).
 template <class T> inline constexpr int default_arity = sizeof(T) == 4 ? 8 : 4;
 
 /// Exact signed distance to a triangle mesh through a BVH (see the file comment).

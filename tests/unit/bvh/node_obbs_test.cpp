@@ -276,9 +276,10 @@ template <class T, int K> void every_form_bounds_and_equals_the_scalar_formula()
 }
 } // namespace
 
-TYPED_TEST(NodeObbsTest, EveryFormBoundsAndEqualsTheScalarFormulaForFourAndEightChildren) {
+TYPED_TEST(NodeObbsTest, EveryFormBoundsAndEqualsTheScalarFormulaForFourToSixteenChildren) {
   every_form_bounds_and_equals_the_scalar_formula<TypeParam, 4>();
   every_form_bounds_and_equals_the_scalar_formula<TypeParam, 8>();
+  every_form_bounds_and_equals_the_scalar_formula<TypeParam, 16>(); // AVX-512: one register
 }
 
 TYPED_TEST(NodeObbsTest, AnySumsGiveABoxThatHoldsThePatch) {

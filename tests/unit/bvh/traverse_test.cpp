@@ -263,9 +263,13 @@ TYPED_TEST(TraverseTest, OrderChildrenSortsTheSurvivorsNearestFirst) {
   order_children_matches_a_sort<TypeParam, 4, Isa::baseline>(rng);
   order_children_matches_a_sort<TypeParam, 8, Isa::baseline>(rng);
 #if EBGEOM_ISA_DISPATCH
-  if (int(detected_isa()) >= int(Isa::avx2)) { // the vector networks (K = 4; K = 8 floats)
+  if (int(detected_isa()) >= int(Isa::avx2)) { // the vector networks (K = 4 and 8)
     order_children_matches_a_sort<TypeParam, 4, Isa::avx2>(rng);
     order_children_matches_a_sort<TypeParam, 8, Isa::avx2>(rng);
+  }
+  if (int(detected_isa()) >= int(Isa::avx512)) { // K = 16 floats
+    order_children_matches_a_sort<TypeParam, 8, Isa::avx512>(rng);
+    order_children_matches_a_sort<TypeParam, 16, Isa::avx512>(rng);
   }
 #endif
 }

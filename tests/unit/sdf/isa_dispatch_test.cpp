@@ -81,11 +81,13 @@ TEST(IsaDispatch, EnvironmentVariableCapsTheChoice) {
     }
 }
 
-TYPED_TEST(IsaDispatchTest, EveryInstructionSetEqualsTheBruteForceBitForBit) {
-  using T = TypeParam;
+namespace {
+/// `MeshSdf<T, K>` on every runnable instruction set: single queries and one lattice tile equal
+/// the brute force bit for bit.
+template <class T, int K> void every_isa_equals_the_brute_force() {
   const Isa was = active_isa();
   for (const PolygonSoup<T>& soup : {bumpy_torus<T>(), make_icosphere<T>(3).value()}) {
-    const auto sdf = MeshSdf<T>::build(soup).value();
+    const auto sdf = MeshSdf<T, K>::build(soup).value();
     const auto ref = BruteForceMeshSdf<T>::build(soup).value();
     const Aabb<T> box = sdf.bounds().grown(T(0.3));
     const auto pts = test::random_points(box, 3000, 11);
@@ -100,7 +102,8 @@ TYPED_TEST(IsaDispatchTest, EveryInstructionSetEqualsTheBruteForceBitForBit) {
       for (const auto& p : pts) {
         const auto a = sdf.closest(p), b = ref.closest(p);
         ASSERT_TRUE(same_bits(a.distance, b.distance))
-            << to_string(isa) << " p=" << p << ": " << a.distance << " vs " << b.distance;
+            << to_string(isa) << " K " << K << " p=" << p << ": " << a.distance << " vs "
+            << b.distance;
         ASSERT_EQ(a.triangle, b.triangle) << to_string(isa);
         ASSERT_TRUE(same_bits(sdf.unsigned_distance(p), std::abs(b.distance))) << to_string(isa);
       }
@@ -115,4 +118,14 @@ TYPED_TEST(IsaDispatchTest, EveryInstructionSetEqualsTheBruteForceBitForBit) {
     }
   }
   set_isa(was);
+}
+} // namespace
+
+TYPED_TEST(IsaDispatchTest, EveryInstructionSetEqualsTheBruteForceBitForBit) {
+  every_isa_equals_the_brute_force<TypeParam, default_arity<TypeParam>>();
+}
+
+// The wider nodes a user may choose (16 floats or 8 doubles: one AVX-512 register per coordinate).
+TYPED_TEST(IsaDispatchTest, WideNodesEqualTheBruteForceBitForBitOnEveryInstructionSet) {
+  every_isa_equals_the_brute_force<TypeParam, 2 * default_arity<TypeParam>>();
 }
