@@ -291,6 +291,9 @@ EBGEOM_TARGET_AVX inline void raise_dist2_avx(const NodeObbs<float, 8>& o, const
 }
 #endif
 #if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
+// The AVX-512 forms (K = 16 floats, K = 8 doubles): zero-masked maxima with all lanes set (GCC 12
+// warns of an uninitialised value in the plain forms' headers), never contracted (the scalar
+// formula's values, as the AVX forms).
 /// One axis of `raise_dist2_avx512`: the squared gap of the projection of `d` on axis a beyond h.
 EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline __m512
 obb_gap2_avx512(const float* ax, const float* ay, const float* az, const float* h, __m512 dx,

@@ -3,7 +3,8 @@
 #pragma once
 /// \file
 /// SIMD versions of the per-node child box distances of `wide_bvh.hpp` for the common widths:
-/// K = 4 and 8 floats (SSE; K = 8 in one register with AVX) and K = 4 doubles (AVX). GCC does not
+/// K = 4 and 8 floats (SSE; K = 8 in one register with AVX) and K = 4 doubles (AVX), and for the
+/// wider nodes a user may choose, K = 16 floats and K = 8 doubles (AVX-512). GCC does not
 /// vectorise the generic `std::max` loops there (scalar compares and branches: a quarter of a mesh
 /// query's instructions), so these overloads, more specialised than the generic templates, take
 /// over when the compiler targets the instruction set. Same values as the generic loops (max/min of
@@ -167,7 +168,10 @@ EBGEOM_TARGET_AVX inline void child_far_dist2_avx(const WideNode<double, 4>& n,
 #endif
 
 #if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
-// The AVX-512 forms: K = 16 floats or K = 8 doubles in one 512-bit register per coordinate.
+// The AVX-512 forms: K = 16 floats or K = 8 doubles in one 512-bit register per coordinate. Every
+// operation takes the zero-masked form with all lanes set: GCC 12 warns of an uninitialised value
+// in the plain forms' headers. Not contracted into fused multiply-adds: the same values as the
+// generic loops, as the AVX forms.
 EBGEOM_TARGET_AVX512 EBGEOM_EXACT_KERNEL inline void
 child_dist2_avx512(const WideNode<float, 16>& n, const Vec3<float>& p, float (&d2)[16]) noexcept {
   const __m512 z = _mm512_setzero_ps();

@@ -213,7 +213,8 @@ EBGEOM_TARGET_AVX2 inline int order_children8(const double (&d2)[8], double lim,
 
 #if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
 /// One layer of compare-exchanges on sixteen unsigned keys: each lane meets lane
-/// `partner[lane]`; the lanes set in `hi` keep the larger key, the others the smaller.
+/// `partner[lane]`; the lanes set in `hi` keep the larger key, the others the smaller. Zero-masked
+/// forms with all lanes set: GCC 12 warns of an uninitialised value in the plain ones' headers.
 EBGEOM_TARGET_AVX512 EBGEOM_FORCE_INLINE __m512i compare_exchange16(__m512i x, __m512i partner,
                                                                     __mmask16 hi) noexcept {
   const __m512i q = _mm512_maskz_permutexvar_epi32(0xffff, partner, x);
