@@ -183,16 +183,22 @@ EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256i sort8_keys(__m256i v) noexcept {
   return compare_exchange8<0x54>(v, _mm256_setr_epi32(0, 2, 1, 4, 3, 6, 5, 7));
 }
 
-EBGEOM_TARGET_AVX2 inline int order_children8(const float (&d2)[8], float lim,
-                                              std::uint32_t (&key)[8]) noexcept {
-  const __m256 d = _mm256_loadu_ps(d2);
-  const __m256 in = _mm256_cmp_ps(d, _mm256_set1_ps(lim), _CMP_LT_OQ);
+/// Sorts the eight children's keys (`child_key<8>` of the float distances `d` where `in`, else
+/// `excluded_key`) into `key`; returns how many are in.
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE int order_keys8(__m256 d, __m256 in,
+                                                       std::uint32_t (&key)[8]) noexcept {
   const __m256i bits =
       _mm256_or_si256(_mm256_and_si256(_mm256_castps_si256(d), _mm256_set1_epi32(0x7ffffff8)),
                       _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
   const __m256i k = _mm256_blendv_epi8(_mm256_set1_epi32(-1), bits, _mm256_castps_si256(in));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(key), sort8_keys(k));
   return _mm_popcnt_u32(unsigned(_mm256_movemask_ps(in)));
+}
+
+EBGEOM_TARGET_AVX2 inline int order_children8(const float (&d2)[8], float lim,
+                                              std::uint32_t (&key)[8]) noexcept {
+  const __m256 d = _mm256_loadu_ps(d2);
+  return order_keys8(d, _mm256_cmp_ps(d, _mm256_set1_ps(lim), _CMP_LT_OQ), key);
 }
 
 /// K = 8 doubles: compared in double, then keyed and sorted as eight floats (two AVX halves).
@@ -202,13 +208,7 @@ EBGEOM_TARGET_AVX2 inline int order_children8(const double (&d2)[8], double lim,
   const __m256d in_lo = _mm256_cmp_pd(lo, l, _CMP_LT_OQ), in_hi = _mm256_cmp_pd(hi, l, _CMP_LT_OQ);
   const __m256 d = _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
   // The all-ones lanes of `in` (a quiet NaN) convert to all-ones floats, and zeros to zeros.
-  const __m256 in = _mm256_set_m128(_mm256_cvtpd_ps(in_hi), _mm256_cvtpd_ps(in_lo));
-  const __m256i bits =
-      _mm256_or_si256(_mm256_and_si256(_mm256_castps_si256(d), _mm256_set1_epi32(0x7ffffff8)),
-                      _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-  const __m256i k = _mm256_blendv_epi8(_mm256_set1_epi32(-1), bits, _mm256_castps_si256(in));
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(key), sort8_keys(k));
-  return _mm_popcnt_u32(unsigned(_mm256_movemask_ps(in)));
+  return order_keys8(d, _mm256_set_m128(_mm256_cvtpd_ps(in_hi), _mm256_cvtpd_ps(in_lo)), key);
 }
 
 #if EBGEOM_ISA_DISPATCH || defined(__AVX512F__)
