@@ -528,7 +528,7 @@ template <class T, int K> void expect_batches_hold(const TriangleMesh<T>& m, int
   std::mt19937_64 rng(std::uint64_t(K * 31 + leaf));
   std::uniform_int_distribution<std::size_t> pick(0, m.triangle_count() - 1);
   std::size_t decided = 0, lattice = 0;
-  for (int b = 0; b < 12; ++b) { // 8³ blocks at random triangles
+  for (int b = 0; b < test::full_or_sanitized(12, 4); ++b) { // 8³ blocks at random triangles
     const Vec3<T> c = m.corner(pick(rng), 0);
     const Vec3<T> o0{box.lo.x + h * std::floor((c.x - box.lo.x) / h) - 4 * h,
                      box.lo.y + h * std::floor((c.y - box.lo.y) / h) - 4 * h,
