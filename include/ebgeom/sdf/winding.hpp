@@ -550,6 +550,21 @@ EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE float atan2_bounded_f(float y, float x
   return copysign(t + ((x - x) + (y - y)), y);
 }
 
+#if EBGEOM_ISA_DISPATCH
+/// The 4 values at p as doubles, for the AVX2 kernels.
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256d load4_pd(const float* p) noexcept {
+  return _mm256_cvtps_pd(_mm_loadu_ps(p));
+}
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256d load4_pd(const double* p) noexcept {
+  return _mm256_loadu_pd(p);
+}
+/// a < 0 ? -a : a per lane, as the scalar kernels write it, for the AVX2 kernels.
+EBGEOM_TARGET_AVX2 EBGEOM_FORCE_INLINE __m256d abs_lt_pd(__m256d a) noexcept {
+  const __m256d zero = _mm256_setzero_pd();
+  return _mm256_blendv_pd(a, zero - a, _mm256_cmp_pd(a, zero, _CMP_LT_OQ));
+}
+#endif
+
 /// `atan2_bounded_f` without the reciprocal.
 template <Isa I = Isa::baseline>
 EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE float atan2_bounded_f(float y, float x) noexcept {
@@ -579,6 +594,17 @@ namespace detail {
   TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static RangeSum node_range(                         \
       const W& w, std::uint32_t ni, const X& x) noexcept {                                         \
     return w.template node_range_inline<I>(ni, x);                                                 \
+  }                                                                                                \
+  template <class W, class X, class F>                                                             \
+  TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static bool sub_frontier(                           \
+      const W& w, const F& pa, const X& x, F& fr) noexcept {                                       \
+    return w.template sub_frontier_inline<I>(pa, x, fr);                                           \
+  }                                                                                                \
+  template <class W, class F, class X, class T>                                                    \
+  TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static void chunk_bounds2(                          \
+      const W& w, const F& fr, const X& x, const Vec3<T>* pts, std::size_t n, T* lo, T* hi,        \
+      const F& pm, const X& px) noexcept {                                                         \
+    w.template chunk_bounds_inline<I>(fr, x, pts, n, lo, hi, &pm, &px);                            \
   }                                                                                                \
   template <class W, class F, class X, class T>                                                    \
   TARGET EBGEOM_WINDING_KERNEL EBGEOM_NOINLINE static void chunk_bounds(                           \
@@ -792,17 +818,22 @@ template <class T, int K = 4> class FastWindingNumber {
   /// `bound_batch` models the far field of a cluster for the whole box when the cluster is at
   /// least this many times the box's radius away (closer ones are tested per point).
   static constexpr double batch_kappa = 2;
+  /// Chunks of at least this many points are bounded by the octants of their box (a second,
+  /// nested frontier per octant, `bound_octants`); smaller ones by one frontier.
+  static constexpr std::size_t nest_min = 256;
 
   /// Bounds on the winding numbers at `n` points (any n), as `bound_packet`: lo[i] <=
   /// `(*this)(pts[i])` <= hi[i] where both are finite. For batches of nearby points (the samples
   /// of a grid tile), cheaper than `bound_packet`: per chunk of `batch_size` points, the clusters
   /// far from the chunk's whole box are evaluated once, at the box's centre, as a first-order
-  /// model with a bound on its second-order remainder over the box (`far_range`); each point
+  /// model with a bound on its second-order remainder over the box (`far_range`); in chunks of
+  /// at least `nest_min` points, so are those far from the box of each octant's points, from
+  /// where the chunk's walk stopped (`bound_octants`); each point
   /// evaluates the rest (its own far tests, far fields and near leaves) in packets of
   /// `packet_width`; with T = float, the near solid angles in float (`leaf_lanes_f`) and the far
   /// fields from an approximate reciprocal square root (`detail::rsqrt_lanes_f`). The
   /// interval is wider than `bound_packet`'s by the model's remainder, the far sums' rounding and
-  /// the float angles' error (about 0.06 on average on the bunny's tiles at 256³). Batches of at
+  /// the float angles' error (a few hundredths on average on the bunny's tiles). Batches of at
   /// most `packet_width` points, a root leaf or a NaN point take `bound_packet`. Thread-safe.
   void bound_batch(const Vec3<T>* pts, std::size_t n, T* lo, T* hi) const noexcept {
     for (std::size_t i = 0; i < n; i += batch_size)
@@ -1012,104 +1043,238 @@ template <class T, int K = 4> class FastWindingNumber {
     bvh::ChildRef leaf[capacity];
   };
 
-  /// Fills `fr` for the box `x` (a walk of the tree as one query at the box would make, in
-  /// double); false when it does not fit or a bound fails (the caller then takes the packets).
-  /// Per node, the K children's box distances, tests and models (`far_range`'s, with `whole`)
-  /// in loops over the children that vectorise; then the children in order. Inlined into the
-  /// kernels of instruction set I (`detail::WindingKernels`).
+#if EBGEOM_ISA_DISPATCH
+  /// The models of `frontier_node_inline`'s children for K = 4 with AVX2 (4 doubles per
+  /// register; GCC and Clang leave that function's loop over the children scalar): the same
+  /// operations in the same order, no fused multiply-adds, so the same values, at the children
+  /// whose `model` is set (0 elsewhere). `ok` becomes false where a model's distance is not
+  /// positive. In the AVX2 and AVX-512 kernels.
+  template <class RN>
+  EBGEOM_TARGET_AVX2 EBGEOM_WINDING_KERNEL static void
+  models4_avx2(const WindingNode<T, K>& c, const RN& rc, const std::uint8_t* model,
+               const double* dmin2a, const detail::RangeBox& x, double* val, double* gx, double* gy,
+               double* gz, double* hs, double* sl, bool& ok) noexcept {
+    // GCC's and Clang's vector operators on __m256d: one rounding per operation, no
+    // contraction in these kernels (`EBGEOM_WINDING_KERNEL`).
+    using V = __m256d;
+    const V one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+    const V i4p = _mm256_set1_pd(0.07957747154594767);
+    const V is_model = _mm256_castsi256_pd(_mm256_cmpgt_epi64(
+        _mm256_cvtepu8_epi64(_mm_cvtsi32_si128(int(model[0]) | int(model[1]) << 8 |
+                                               int(model[2]) << 16 | int(model[3]) << 24)),
+        _mm256_setzero_si256()));
+    const V dmin =
+        _mm256_sqrt_pd(_mm256_blendv_pd(one, _mm256_loadu_pd(dmin2a), is_model)) * (1 - 1e-12);
+    const V dfar = detail::load4_pd(rc.dfar);
+    const V dlow = _mm256_blendv_pd(dfar, dmin, _mm256_cmp_pd(dmin, dfar, _CMP_GT_OQ));
+    const V nrm = detail::load4_pd(rc.nrm), fro = detail::load4_pd(rc.fro);
+    const V m0 = detail::load4_pd(c.m[0]), m1 = detail::load4_pd(c.m[1]),
+            m2 = detail::load4_pd(c.m[2]), m3 = detail::load4_pd(c.m[3]),
+            m4 = detail::load4_pd(c.m[4]), m5 = detail::load4_pd(c.m[5]),
+            m6 = detail::load4_pd(c.m[6]), m7 = detail::load4_pd(c.m[7]),
+            m8 = detail::load4_pd(c.m[8]);
+    const V tr = m0 + m4 + m8;
+    const V il = one / _mm256_blendv_pd(one, dlow, is_model), il2 = il * il, il3 = il2 * il;
+    const V mag = (nrm * il2 + (detail::abs_lt_pd(tr) + 9.0 * fro) * il3) * i4p;
+    const V nx = detail::load4_pd(c.nx), ny = detail::load4_pd(c.ny), nz = detail::load4_pd(c.nz);
+    const V rx = detail::load4_pd(c.cx) - x.c.x, ry = detail::load4_pd(c.cy) - x.c.y,
+            rz = detail::load4_pd(c.cz) - x.c.z;
+    const V r2 = rx * rx + ry * ry + rz * rz;
+    const V ir = one / _mm256_sqrt_pd(_mm256_blendv_pd(one, r2, is_model)), ir2 = ir * ir;
+    const V ir3 = ir2 * ir, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
+    const V mrx = m0 * rx + m1 * ry + m2 * rz, mry = m3 * rx + m4 * ry + m5 * rz,
+            mrz = m6 * rx + m7 * ry + m8 * rz;
+    const V mtx = m0 * rx + m3 * ry + m6 * rz, mty = m1 * rx + m4 * ry + m7 * rz,
+            mtz = m2 * rx + m5 * ry + m8 * rz;
+    const V g = tr * r2 - 3.0 * (rx * mrx + ry * mry + rz * mrz);
+    const V nr = nx * rx + ny * ry + nz * rz;
+    const V v = (nr * ir3 + g * ir5) * i4p;
+    const V a1 = 3.0 * nr * ir5, a2 = 5.0 * g * ir7;
+    const V grx = nx * ir3 - rx * a1 + (rx * (2.0 * tr) - (mrx + mtx) * 3.0) * ir5 - rx * a2;
+    const V gry = ny * ir3 - ry * a1 + (ry * (2.0 * tr) - (mry + mty) * 3.0) * ir5 - ry * a2;
+    const V grz = nz * ir3 - rz * a1 + (rz * (2.0 * tr) - (mrz + mtz) * 3.0) * ir5 - rz * a2;
+    const V id = one / _mm256_blendv_pd(one, dmin, is_model), id3 = id * id * id, id4 = id3 * id;
+    const V h = (6.0 * nrm * id4 + 41.6 * fro * (id4 * id)) * i4p;
+    const V ggx = grx * -i4p, ggy = gry * -i4p, ggz = grz * -i4p;
+    const V slack =
+        detail::abs_lt_pd(v) + mag +
+        x.rho * (detail::abs_lt_pd(ggx) + detail::abs_lt_pd(ggy) + detail::abs_lt_pd(ggz));
+    _mm256_storeu_pd(val, _mm256_blendv_pd(zero, v, is_model));
+    _mm256_storeu_pd(gx, _mm256_blendv_pd(zero, ggx, is_model));
+    _mm256_storeu_pd(gy, _mm256_blendv_pd(zero, ggy, is_model));
+    _mm256_storeu_pd(gz, _mm256_blendv_pd(zero, ggz, is_model));
+    _mm256_storeu_pd(hs, _mm256_blendv_pd(zero, h, is_model));
+    _mm256_storeu_pd(sl, _mm256_blendv_pd(zero, slack, is_model));
+    // ok &= !is_model | (dlow > 0)
+    const int bad =
+        _mm256_movemask_pd(_mm256_andnot_pd(_mm256_cmp_pd(dlow, zero, _CMP_GT_OQ), is_model));
+    ok = ok & (bad == 0);
+  }
+#endif
+
+  /// One node `ni` of a frontier's walk over the box `x` (`frontier_inline`), for its children
+  /// whose bit is set in `kmask`: the K children's box distances and tests, then the models
+  /// (`far_range`'s, with `whole`) of those far from every point of the box (at least
+  /// `batch_kappa` box radii away) added to `fr`, the leaves near every point added to `fr`'s
+  /// leaves, the subtrees near every point pushed on `todo`, the others added to `fr`'s items.
+  /// False when `fr` is full. Inlined into the kernels of instruction set I.
   template <Isa I>
-  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE bool frontier_inline(const detail::RangeBox& x,
-                                                                 Frontier& fr) const noexcept {
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE bool
+  frontier_node_inline(const detail::RangeBox& x, Frontier& fr, std::uint32_t ni,
+                       std::uint32_t kmask,
+                       bvh::FixedStack<std::uint32_t, bvh::WideBvh<T, K>::stack_capacity>& todo,
+                       bool& ok) const noexcept {
     constexpr double i4p = 0.07957747154594767;
     const double e = 16 * double(std::numeric_limits<T>::epsilon()); // as in `node_range`
     const double kr = batch_kappa * x.rho, kr2 = kr * kr;
     const double blx = x.box.lo.x, bly = x.box.lo.y, blz = x.box.lo.z;
     const double bhx = x.box.hi.x, bhy = x.box.hi.y, bhz = x.box.hi.z;
     const double xcx = x.c.x, xcy = x.c.y, xcz = x.c.z;
+    const WindingNode<T, K>& c = nodes_[ni];
+    const RangeNode& rc = range_nodes_[ni];
+    const bvh::WideNode<T, K>& node = bvh_.nodes[ni];
+    alignas(64) double val[K], gx[K], gy[K], gz[K], hs[K], sl[K];
+    std::uint8_t model[K], all_near[K];
+    alignas(64) double dmin2a[K];
+    std::uint32_t any_model = 0;
+    for (int k = 0; k < K; ++k) { // the tests
+      const double cx = double(c.cx[k]), cy = double(c.cy[k]), cz = double(c.cz[k]);
+      const double far2 = double(c.far2[k]);
+      double dmin2, dmax2;
+      box_dist2_range(blx, bly, blz, bhx, bhy, bhz, cx, cy, cz, dmin2, dmax2);
+      // far for every point (and 2 box radii away): the model; empty slots have far2 = inf.
+      const bool is_model = (dmin2 * (1 - e) > far2) & (dmin2 >= kr2);
+      model[k] = is_model;
+      all_near[k] = dmax2 * (1 + e) <= far2;
+      dmin2a[k] = dmin2;
+      any_model |= std::uint32_t(is_model) << k;
+    }
+    if ((any_model & kmask) != 0) {
+#if EBGEOM_ISA_DISPATCH
+      if constexpr (K == 4 && (I == Isa::avx2 || I == Isa::avx512)) {
+        models4_avx2(c, rc, model, dmin2a, x, val, gx, gy, gz, hs, sl, ok);
+      } else
+#endif
+      {
+        for (int k = 0; k < K; ++k) { // the models, branch-free over the children
+          const double cx = double(c.cx[k]), cy = double(c.cy[k]), cz = double(c.cz[k]);
+          const double dmin2 = dmin2a[k];
+          const bool is_model = model[k];
+          // `far_range` with `whole` (dmin > 0 there), at harmless arguments elsewhere.
+          const double dmin = detail::winding_sqrt(is_model ? dmin2 : 1.0) * (1 - 1e-12);
+          const double dfar = double(rc.dfar[k]);
+          const double dlow = dmin > dfar ? dmin : dfar;
+          const double nrm = double(rc.nrm[k]), fro = double(rc.fro[k]);
+          const double tr = double(c.m[0][k]) + double(c.m[4][k]) + double(c.m[8][k]);
+          const double atr = tr < 0 ? -tr : tr;
+          const double il = 1 / (is_model ? dlow : 1.0), il2 = il * il, il3 = il2 * il;
+          const double mag = (nrm * il2 + (atr + 9 * fro) * il3) * i4p;
+          const double nx = double(c.nx[k]), ny = double(c.ny[k]), nz = double(c.nz[k]);
+          const double m0 = double(c.m[0][k]), m1 = double(c.m[1][k]), m2 = double(c.m[2][k]);
+          const double m3 = double(c.m[3][k]), m4 = double(c.m[4][k]), m5 = double(c.m[5][k]);
+          const double m6 = double(c.m[6][k]), m7 = double(c.m[7][k]), m8 = double(c.m[8][k]);
+          const double rx = cx - xcx, ry = cy - xcy, rz = cz - xcz;
+          const double r2 = rx * rx + ry * ry + rz * rz;
+          const double ir = 1 / detail::winding_sqrt(is_model ? r2 : 1.0), ir2 = ir * ir;
+          const double ir3 = ir2 * ir, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
+          // M r and Mᵀ r
+          const double mrx = m0 * rx + m1 * ry + m2 * rz, mry = m3 * rx + m4 * ry + m5 * rz,
+                       mrz = m6 * rx + m7 * ry + m8 * rz;
+          const double mtx = m0 * rx + m3 * ry + m6 * rz, mty = m1 * rx + m4 * ry + m7 * rz,
+                       mtz = m2 * rx + m5 * ry + m8 * rz;
+          const double g = tr * r2 - 3 * (rx * mrx + ry * mry + rz * mrz);
+          const double nr = nx * rx + ny * ry + nz * rz;
+          const double v = (nr * ir3 + g * ir5) * i4p;
+          // ∇_r of the term; ∇_p = -∇_r.
+          const double a1 = 3 * nr * ir5, a2 = 5 * g * ir7;
+          const double grx =
+              nx * ir3 - rx * a1 + (rx * (2 * tr) - (mrx + mtx) * 3.0) * ir5 - rx * a2;
+          const double gry =
+              ny * ir3 - ry * a1 + (ry * (2 * tr) - (mry + mty) * 3.0) * ir5 - ry * a2;
+          const double grz =
+              nz * ir3 - rz * a1 + (rz * (2 * tr) - (mrz + mtz) * 3.0) * ir5 - rz * a2;
+          const double id = 1 / (is_model ? dmin : 1.0), id3 = id * id * id, id4 = id3 * id;
+          const double h = (6 * nrm * id4 + 41.6 * fro * (id4 * id)) * i4p;
+          const double ggx = grx * -i4p, ggy = gry * -i4p, ggz = grz * -i4p;
+          const double agx = ggx < 0 ? -ggx : ggx, agy = ggy < 0 ? -ggy : ggy,
+                       agz = ggz < 0 ? -ggz : ggz;
+          const double av = v < 0 ? -v : v;
+          val[k] = is_model ? v : 0.0;
+          gx[k] = is_model ? ggx : 0.0, gy[k] = is_model ? ggy : 0.0, gz[k] = is_model ? ggz : 0.0;
+          hs[k] = is_model ? h : 0.0;
+          sl[k] = is_model ? av + mag + x.rho * (agx + agy + agz) : 0.0;
+          // `far_range` claims nothing where dlow is not positive.
+          ok = ok & (!is_model | (dlow > 0));
+        }
+      }
+    }
+    for (int k = 0; k < K; ++k) {
+      const bvh::ChildRef r = node.child[k];
+      if (r.is_empty() || !((kmask >> k) & 1u)) continue;
+      if (model[k]) {
+        fr.value += val[k], fr.hess += hs[k];
+        fr.grad.x += gx[k], fr.grad.y += gy[k], fr.grad.z += gz[k];
+        fr.mag += double(rc.magf[k]);
+        fr.slack += sl[k];
+      } else if (all_near[k]) {
+        if (r.is_leaf()) {
+          if (fr.leaves == Frontier::capacity) return false;
+          fr.leaf[fr.leaves++] = r;
+        } else if (r.is_inner()) {
+          todo.push(r.index);
+        }
+      } else {
+        if (fr.items == Frontier::capacity) return false;
+        fr.item_node[fr.items] = ni;
+        fr.item_k[fr.items++] = std::uint8_t(k);
+      }
+    }
+    return true;
+  }
+
+  /// Fills `fr` for the box `x` (a walk of the tree as one query at the box would make, in
+  /// double, by `frontier_node_inline`); false when it does not fit or a bound fails (the caller
+  /// then takes the packets). Inlined into the kernels of instruction set I
+  /// (`detail::WindingKernels`).
+  template <Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE bool frontier_inline(const detail::RangeBox& x,
+                                                                 Frontier& fr) const noexcept {
     bvh::FixedStack<std::uint32_t, bvh::WideBvh<T, K>::stack_capacity> todo;
     todo.push(bvh_.root.index);
     bool ok = true;
     while (!todo.empty()) {
       const std::uint32_t ni = todo.pop();
       ++fr.nodes;
-      const WindingNode<T, K>& c = nodes_[ni];
-      const RangeNode& rc = range_nodes_[ni];
-      const bvh::WideNode<T, K>& node = bvh_.nodes[ni];
-      alignas(64) double val[K], gx[K], gy[K], gz[K], hs[K], sl[K];
-      std::uint8_t model[K], all_near[K];
-      for (int k = 0; k < K; ++k) { // branch-free over the children: vectorisable
-        const double cx = double(c.cx[k]), cy = double(c.cy[k]), cz = double(c.cz[k]);
-        const double far2 = double(c.far2[k]);
-        double dmin2, dmax2;
-        box_dist2_range(blx, bly, blz, bhx, bhy, bhz, cx, cy, cz, dmin2, dmax2);
-        // far for every point (and 2 box radii away): the model; empty slots have far2 = inf.
-        const bool is_model = (dmin2 * (1 - e) > far2) & (dmin2 >= kr2);
-        model[k] = is_model;
-        all_near[k] = dmax2 * (1 + e) <= far2;
-        // `far_range` with `whole` (dmin > 0 there), at harmless arguments elsewhere.
-        const double dmin = detail::winding_sqrt(is_model ? dmin2 : 1.0) * (1 - 1e-12);
-        const double dfar = double(rc.dfar[k]);
-        const double dlow = dmin > dfar ? dmin : dfar;
-        const double nrm = double(rc.nrm[k]), fro = double(rc.fro[k]);
-        const double tr = double(c.m[0][k]) + double(c.m[4][k]) + double(c.m[8][k]);
-        const double atr = tr < 0 ? -tr : tr;
-        const double il = 1 / (is_model ? dlow : 1.0), il2 = il * il, il3 = il2 * il;
-        const double mag = (nrm * il2 + (atr + 9 * fro) * il3) * i4p;
-        const double nx = double(c.nx[k]), ny = double(c.ny[k]), nz = double(c.nz[k]);
-        const double m0 = double(c.m[0][k]), m1 = double(c.m[1][k]), m2 = double(c.m[2][k]);
-        const double m3 = double(c.m[3][k]), m4 = double(c.m[4][k]), m5 = double(c.m[5][k]);
-        const double m6 = double(c.m[6][k]), m7 = double(c.m[7][k]), m8 = double(c.m[8][k]);
-        const double rx = cx - xcx, ry = cy - xcy, rz = cz - xcz;
-        const double r2 = rx * rx + ry * ry + rz * rz;
-        const double ir = 1 / detail::winding_sqrt(is_model ? r2 : 1.0), ir2 = ir * ir;
-        const double ir3 = ir2 * ir, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
-        // M r and Mᵀ r
-        const double mrx = m0 * rx + m1 * ry + m2 * rz, mry = m3 * rx + m4 * ry + m5 * rz,
-                     mrz = m6 * rx + m7 * ry + m8 * rz;
-        const double mtx = m0 * rx + m3 * ry + m6 * rz, mty = m1 * rx + m4 * ry + m7 * rz,
-                     mtz = m2 * rx + m5 * ry + m8 * rz;
-        const double g = tr * r2 - 3 * (rx * mrx + ry * mry + rz * mrz);
-        const double nr = nx * rx + ny * ry + nz * rz;
-        const double v = (nr * ir3 + g * ir5) * i4p;
-        // ∇_r of the term; ∇_p = -∇_r.
-        const double a1 = 3 * nr * ir5, a2 = 5 * g * ir7;
-        const double grx = nx * ir3 - rx * a1 + (rx * (2 * tr) - (mrx + mtx) * 3.0) * ir5 - rx * a2;
-        const double gry = ny * ir3 - ry * a1 + (ry * (2 * tr) - (mry + mty) * 3.0) * ir5 - ry * a2;
-        const double grz = nz * ir3 - rz * a1 + (rz * (2 * tr) - (mrz + mtz) * 3.0) * ir5 - rz * a2;
-        const double id = 1 / (is_model ? dmin : 1.0), id3 = id * id * id, id4 = id3 * id;
-        const double h = (6 * nrm * id4 + 41.6 * fro * (id4 * id)) * i4p;
-        const double ggx = grx * -i4p, ggy = gry * -i4p, ggz = grz * -i4p;
-        const double agx = ggx < 0 ? -ggx : ggx, agy = ggy < 0 ? -ggy : ggy,
-                     agz = ggz < 0 ? -ggz : ggz;
-        const double av = v < 0 ? -v : v;
-        val[k] = is_model ? v : 0.0;
-        gx[k] = is_model ? ggx : 0.0, gy[k] = is_model ? ggy : 0.0, gz[k] = is_model ? ggz : 0.0;
-        hs[k] = is_model ? h : 0.0;
-        sl[k] = is_model ? av + mag + x.rho * (agx + agy + agz) : 0.0;
-        // `far_range` claims nothing where dlow is not positive.
-        ok = ok & (!is_model | (dlow > 0));
-      }
-      for (int k = 0; k < K; ++k) {
-        const bvh::ChildRef r = node.child[k];
-        if (r.is_empty()) continue;
-        if (model[k]) {
-          fr.value += val[k], fr.hess += hs[k];
-          fr.grad.x += gx[k], fr.grad.y += gy[k], fr.grad.z += gz[k];
-          fr.mag += double(rc.magf[k]);
-          fr.slack += sl[k];
-        } else if (all_near[k]) {
-          if (r.is_leaf()) {
-            if (fr.leaves == Frontier::capacity) return false;
-            fr.leaf[fr.leaves++] = r;
-          } else if (r.is_inner()) {
-            todo.push(r.index);
-          }
-        } else {
-          if (fr.items == Frontier::capacity) return false;
-          fr.item_node[fr.items] = ni;
-          fr.item_k[fr.items++] = std::uint8_t(k);
-        }
-      }
+      if (!frontier_node_inline<I>(x, fr, ni, ~0u, todo, ok)) return false;
+    }
+    const auto finite = [](double v) { return v - v == 0; };
+    return ok && finite(fr.value) && finite(fr.hess) && finite(fr.mag) && finite(fr.slack) &&
+           finite(fr.grad.x) && finite(fr.grad.y) && finite(fr.grad.z);
+  }
+
+  /// Fills `fr` (empty) for a box `x2` inside the box of the frontier `pa`, continuing `pa`'s walk
+  /// instead of starting again at the root: `pa`'s leaves (near every point of x2 too), then
+  /// `pa`'s items tested against x2 (`frontier_node_inline`, the items of one node together) and
+  /// the subtrees near every point of x2 walked. `fr`'s model holds the clusters far from x2 that
+  /// are not in `pa`'s model; the points of x2 take both models (`chunk_bounds_inline` with `pm`).
+  /// `fr.nodes` counts `pa`'s nodes too (for the rounding margin). False as `frontier_inline`.
+  template <Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE bool
+  sub_frontier_inline(const Frontier& pa, const detail::RangeBox& x2, Frontier& fr) const noexcept {
+    bvh::FixedStack<std::uint32_t, bvh::WideBvh<T, K>::stack_capacity> todo;
+    bool ok = true;
+    for (std::uint32_t i = 0; i < pa.leaves; ++i) fr.leaf[fr.leaves++] = pa.leaf[i];
+    fr.nodes = pa.nodes;
+    for (std::uint32_t i = 0; i < pa.items;) {
+      const std::uint32_t ni = pa.item_node[i];
+      std::uint32_t km = 0;
+      for (; i < pa.items && pa.item_node[i] == ni; ++i) km |= 1u << pa.item_k[i];
+      if (!frontier_node_inline<I>(x2, fr, ni, km, todo, ok)) return false;
+    }
+    while (!todo.empty()) {
+      const std::uint32_t ni = todo.pop();
+      ++fr.nodes;
+      if (!frontier_node_inline<I>(x2, fr, ni, ~0u, todo, ok)) return false;
     }
     const auto finite = [](double v) { return v - v == 0; };
     return ok && finite(fr.value) && finite(fr.hess) && finite(fr.mag) && finite(fr.slack) &&
@@ -1182,20 +1347,68 @@ template <class T, int K = 4> class FastWindingNumber {
       fits = detail::WindingKernels<decltype(isa)::value>::frontier(*this, x, fr);
     });
     if (!fits) return by_packets();
+    if (n >= nest_min) return bound_octants(fr, x, pts, n, lo, hi);
     with_active_isa([&](auto isa) {
       detail::WindingKernels<decltype(isa)::value>::chunk_bounds(*this, fr, x, pts, n, lo, hi);
     });
   }
 
+  /// `bound_chunk`'s bounds at its n points, from their frontier `fr` over their box `x`, by the
+  /// octants of the box: the points of each octant (in their order) get a frontier of their own
+  /// box that continues `fr`'s walk (`sub_frontier_inline`: clusters far from the octant but not
+  /// from the whole box become a second model, subtrees near every point of it are opened once),
+  /// and their bounds take both models; where that frontier does not fit, `fr` alone.
+  void bound_octants(const Frontier& fr, const detail::RangeBox& x, const Vec3<T>* pts,
+                     std::size_t n, T* lo, T* hi) const noexcept {
+    const Vec3<double> c = x.c;
+    Vec3<T> sp[batch_size];
+    T slo[batch_size], shi[batch_size];
+    std::uint16_t from[batch_size];
+    std::uint8_t oct[batch_size];
+    std::size_t first[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    for (std::size_t i = 0; i < n; ++i) { // a counting sort by octant
+      const Vec3<double> q = Vec3<double>::from(pts[i]);
+      oct[i] = std::uint8_t(int(q.x > c.x) | int(q.y > c.y) << 1 | int(q.z > c.z) << 2);
+      ++first[oct[i] + 1];
+    }
+    for (int o = 0; o < 8; ++o) first[o + 1] += first[o];
+    std::size_t next[8];
+    std::copy(first, first + 8, next);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t d = next[oct[i]]++;
+      sp[d] = pts[i], from[d] = std::uint16_t(i);
+    }
+    for (int o = 0; o < 8; ++o) {
+      const std::size_t b = first[o], m = first[o + 1] - b;
+      if (m == 0) continue;
+      Aabb<double> box;
+      for (std::size_t i = b; i < b + m; ++i) box.extend(Vec3<double>::from(sp[i]));
+      const detail::RangeBox x2(box);
+      Frontier fr2;
+      with_active_isa([&](auto isa) {
+        using Kernels = detail::WindingKernels<decltype(isa)::value>;
+        if (Kernels::sub_frontier(*this, fr, x2, fr2))
+          Kernels::chunk_bounds2(*this, fr2, x2, sp + b, m, slo + b, shi + b, fr, x);
+        else
+          Kernels::chunk_bounds(*this, fr, x, sp + b, m, slo + b, shi + b);
+      });
+    }
+    for (std::size_t i = 0; i < n; ++i) lo[from[i]] = slo[i], hi[from[i]] = shi[i];
+  }
+
   /// The bounds of `bound_chunk` at its n points from the shared part `fr` over their box `x`:
   /// per packet of `packet_width` points, `frontier_sums_inline`, then each point's interval.
-  /// Inlined into the kernels of instruction set I (`detail::WindingKernels`).
+  /// With `pm`, the frontier of a box containing x (`bound_octants`; `pxb` its box) whose model
+  /// the points take as well, and whose nodes `fr.nodes` already counts. Inlined into the kernels
+  /// of instruction set I (`detail::WindingKernels`).
   template <Isa I>
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
   chunk_bounds_inline(const Frontier& fr, const detail::RangeBox& x, const Vec3<T>* pts,
-                      std::size_t n, T* lo, T* hi) const noexcept {
+                      std::size_t n, T* lo, T* hi, const Frontier* pm = nullptr,
+                      const detail::RangeBox* pxb = nullptr) const noexcept {
     constexpr int P = packet_width;
     const double eps = double(std::numeric_limits<T>::epsilon());
+    const double pmag = pm ? pm->mag : 0.0, pslack = pm ? pm->slack : 0.0;
     const T inf = std::numeric_limits<T>::infinity();
     alignas(64) T far_sum[P], mag[P];
     alignas(64) double near[P], cnt[P], errn[P];
@@ -1223,11 +1436,17 @@ template <class T, int K = 4> class FastWindingNumber {
         const double e = sign_bound_inline(near[j], cnt[j]) + errn[j] * (1 + 1e-9);
         const double alo = double(T((near[j] - e) * inv4pi));
         const double ahi = double(T((near[j] + e) * inv4pi));
-        const double model = fr.value + (fr.grad.x * ddx + fr.grad.y * ddy + fr.grad.z * ddz);
+        double model = fr.value + (fr.grad.x * ddx + fr.grad.y * ddy + fr.grad.z * ddz);
         const double fs = double(far_sum[j]);
-        const double r = 2 * steps * eps * (fr.mag + double(mag[j]) * mag_slack) +
-                         0.5 * fr.hess * (ddx * ddx + ddy * ddy + ddz * ddz) * (1 + 1e-9) +
-                         1e-12 * fr.slack;
+        double r = 2 * steps * eps * (fr.mag + pmag + double(mag[j]) * mag_slack) +
+                   0.5 * fr.hess * (ddx * ddx + ddy * ddy + ddz * ddz) * (1 + 1e-9) +
+                   1e-12 * (fr.slack + pslack);
+        if (pm) {
+          const double ex = double(q.x) - pxb->c.x, ey = double(q.y) - pxb->c.y,
+                       ez = double(q.z) - pxb->c.z;
+          model += pm->value + (pm->grad.x * ex + pm->grad.y * ey + pm->grad.z * ez);
+          r += 0.5 * pm->hess * (ex * ex + ey * ey + ez * ez) * (1 + 1e-9);
+        }
         const double sl = 1e-12 * (fabs(alo) + fabs(ahi) + fabs(fs) + fabs(model) + r) + 1e-300;
         const double l = alo + fs + model - r - sl, h = ahi + fs + model + r + sl;
         const bool ok = finite(l) & finite(h);
