@@ -1270,11 +1270,13 @@ template <class T, int K = 4> class FastWindingNumber {
       std::uint32_t km = 0;
       for (; i < pa.items && pa.item_node[i] == ni; ++i) km |= 1u << pa.item_k[i];
       if (!frontier_node_inline<I>(x2, fr, ni, km, todo, ok)) return false;
-    }
-    while (!todo.empty()) {
-      const std::uint32_t ni = todo.pop();
-      ++fr.nodes;
-      if (!frontier_node_inline<I>(x2, fr, ni, ~0u, todo, ok)) return false;
+      // Walked before the next node's items, so that the stack holds at most what a walk from
+      // the root would (at most K children of one node, then depth-first below them).
+      while (!todo.empty()) {
+        const std::uint32_t nj = todo.pop();
+        ++fr.nodes;
+        if (!frontier_node_inline<I>(x2, fr, nj, ~0u, todo, ok)) return false;
+      }
     }
     const auto finite = [](double v) { return v - v == 0; };
     return ok && finite(fr.value) && finite(fr.hess) && finite(fr.mag) && finite(fr.slack) &&
