@@ -1045,7 +1045,7 @@ template <class T, int K = 4> class FastWindingNumber {
 
 #if EBGEOM_ISA_DISPATCH
   /// The models of `frontier_node_inline`'s children for K = 4 with AVX2 (4 doubles per
-  /// register; GCC and Clang leave that function's loop over the children scalar): the same
+  /// register; GCC 12 leaves that function's loop over the children scalar): the same
   /// operations in the same order, no fused multiply-adds, so the same values, at the children
   /// whose `model` is set (0 elsewhere). `ok` becomes false where a model's distance is not
   /// positive. In the AVX2 and AVX-512 kernels.
