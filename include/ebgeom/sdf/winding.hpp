@@ -1044,6 +1044,44 @@ template <class T, int K = 4> class FastWindingNumber {
   };
 
 #if EBGEOM_ISA_DISPATCH
+  /// The far fields of the K = 4 children of `c` at the point `p`, over 4π: values `v` and
+  /// gradients with respect to p (`gx`, `gy`, `gz`), as `far_range` computes them (the same
+  /// operations in the same order, no fused multiply-adds, so the same values), at the lanes set
+  /// in `use` (harmless arguments elsewhere). For the AVX2 and AVX-512 kernels.
+  EBGEOM_TARGET_AVX2 EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE static void
+  fields4_avx2(const WindingNode<T, K>& c, const Vec3<double>& p, __m256d use, __m256d& v,
+               __m256d& gx, __m256d& gy, __m256d& gz) noexcept {
+    // GCC's and Clang's vector operators on __m256d: one rounding per operation, no
+    // contraction in these kernels (`EBGEOM_WINDING_KERNEL`).
+    using V = __m256d;
+    const V one = _mm256_set1_pd(1.0);
+    const V i4p = _mm256_set1_pd(0.07957747154594767);
+    const V m0 = detail::load4_pd(c.m[0]), m1 = detail::load4_pd(c.m[1]),
+            m2 = detail::load4_pd(c.m[2]), m3 = detail::load4_pd(c.m[3]),
+            m4 = detail::load4_pd(c.m[4]), m5 = detail::load4_pd(c.m[5]),
+            m6 = detail::load4_pd(c.m[6]), m7 = detail::load4_pd(c.m[7]),
+            m8 = detail::load4_pd(c.m[8]);
+    const V tr = m0 + m4 + m8;
+    const V nx = detail::load4_pd(c.nx), ny = detail::load4_pd(c.ny), nz = detail::load4_pd(c.nz);
+    const V rx = detail::load4_pd(c.cx) - p.x, ry = detail::load4_pd(c.cy) - p.y,
+            rz = detail::load4_pd(c.cz) - p.z;
+    const V r2 = rx * rx + ry * ry + rz * rz;
+    const V ir = one / _mm256_sqrt_pd(_mm256_blendv_pd(one, r2, use)), ir2 = ir * ir;
+    const V ir3 = ir2 * ir, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
+    const V mrx = m0 * rx + m1 * ry + m2 * rz, mry = m3 * rx + m4 * ry + m5 * rz,
+            mrz = m6 * rx + m7 * ry + m8 * rz;
+    const V mtx = m0 * rx + m3 * ry + m6 * rz, mty = m1 * rx + m4 * ry + m7 * rz,
+            mtz = m2 * rx + m5 * ry + m8 * rz;
+    const V g = tr * r2 - 3.0 * (rx * mrx + ry * mry + rz * mrz);
+    const V nr = nx * rx + ny * ry + nz * rz;
+    v = (nr * ir3 + g * ir5) * i4p;
+    const V a1 = 3.0 * nr * ir5, a2 = 5.0 * g * ir7;
+    const V grx = nx * ir3 - rx * a1 + (rx * (2.0 * tr) - (mrx + mtx) * 3.0) * ir5 - rx * a2;
+    const V gry = ny * ir3 - ry * a1 + (ry * (2.0 * tr) - (mry + mty) * 3.0) * ir5 - ry * a2;
+    const V grz = nz * ir3 - rz * a1 + (rz * (2.0 * tr) - (mrz + mtz) * 3.0) * ir5 - rz * a2;
+    gx = grx * -i4p, gy = gry * -i4p, gz = grz * -i4p;
+  }
+
   /// The models of `frontier_node_inline`'s children for K = 4 with AVX2 (4 doubles per
   /// register; GCC 12 leaves that function's loop over the children scalar): the same
   /// operations in the same order, no fused multiply-adds, so the same values, at the children
@@ -1068,34 +1106,13 @@ template <class T, int K = 4> class FastWindingNumber {
     const V dfar = detail::load4_pd(rc.dfar);
     const V dlow = _mm256_blendv_pd(dfar, dmin, _mm256_cmp_pd(dmin, dfar, _CMP_GT_OQ));
     const V nrm = detail::load4_pd(rc.nrm), fro = detail::load4_pd(rc.fro);
-    const V m0 = detail::load4_pd(c.m[0]), m1 = detail::load4_pd(c.m[1]),
-            m2 = detail::load4_pd(c.m[2]), m3 = detail::load4_pd(c.m[3]),
-            m4 = detail::load4_pd(c.m[4]), m5 = detail::load4_pd(c.m[5]),
-            m6 = detail::load4_pd(c.m[6]), m7 = detail::load4_pd(c.m[7]),
-            m8 = detail::load4_pd(c.m[8]);
-    const V tr = m0 + m4 + m8;
+    const V tr = detail::load4_pd(c.m[0]) + detail::load4_pd(c.m[4]) + detail::load4_pd(c.m[8]);
     const V il = one / _mm256_blendv_pd(one, dlow, is_model), il2 = il * il, il3 = il2 * il;
     const V mag = (nrm * il2 + (detail::abs_lt_pd(tr) + 9.0 * fro) * il3) * i4p;
-    const V nx = detail::load4_pd(c.nx), ny = detail::load4_pd(c.ny), nz = detail::load4_pd(c.nz);
-    const V rx = detail::load4_pd(c.cx) - x.c.x, ry = detail::load4_pd(c.cy) - x.c.y,
-            rz = detail::load4_pd(c.cz) - x.c.z;
-    const V r2 = rx * rx + ry * ry + rz * rz;
-    const V ir = one / _mm256_sqrt_pd(_mm256_blendv_pd(one, r2, is_model)), ir2 = ir * ir;
-    const V ir3 = ir2 * ir, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
-    const V mrx = m0 * rx + m1 * ry + m2 * rz, mry = m3 * rx + m4 * ry + m5 * rz,
-            mrz = m6 * rx + m7 * ry + m8 * rz;
-    const V mtx = m0 * rx + m3 * ry + m6 * rz, mty = m1 * rx + m4 * ry + m7 * rz,
-            mtz = m2 * rx + m5 * ry + m8 * rz;
-    const V g = tr * r2 - 3.0 * (rx * mrx + ry * mry + rz * mrz);
-    const V nr = nx * rx + ny * ry + nz * rz;
-    const V v = (nr * ir3 + g * ir5) * i4p;
-    const V a1 = 3.0 * nr * ir5, a2 = 5.0 * g * ir7;
-    const V grx = nx * ir3 - rx * a1 + (rx * (2.0 * tr) - (mrx + mtx) * 3.0) * ir5 - rx * a2;
-    const V gry = ny * ir3 - ry * a1 + (ry * (2.0 * tr) - (mry + mty) * 3.0) * ir5 - ry * a2;
-    const V grz = nz * ir3 - rz * a1 + (rz * (2.0 * tr) - (mrz + mtz) * 3.0) * ir5 - rz * a2;
+    V v, ggx, ggy, ggz;
+    fields4_avx2(c, x.c, is_model, v, ggx, ggy, ggz);
     const V id = one / _mm256_blendv_pd(one, dmin, is_model), id3 = id * id * id, id4 = id3 * id;
     const V h = (6.0 * nrm * id4 + 41.6 * fro * (id4 * id)) * i4p;
-    const V ggx = grx * -i4p, ggy = gry * -i4p, ggz = grz * -i4p;
     const V slack =
         detail::abs_lt_pd(v) + mag +
         x.rho * (detail::abs_lt_pd(ggx) + detail::abs_lt_pd(ggy) + detail::abs_lt_pd(ggz));
@@ -1109,6 +1126,72 @@ template <class T, int K = 4> class FastWindingNumber {
     const int bad =
         _mm256_movemask_pd(_mm256_andnot_pd(_mm256_cmp_pd(dlow, zero, _CMP_GT_OQ), is_model));
     ok = ok & (bad == 0);
+  }
+
+  /// `far_range` for the K = 4 children of a node at once, for those whose bit is set in `need`
+  /// (the others' `fv` untouched): `dmin2s[k]` the squared distance from the box to child k's
+  /// centre, `whole[k]` as `far_range`'s. The same operations in the same order, no fused
+  /// multiply-adds, so the same terms bit for bit. In the AVX2 and AVX-512 kernels
+  /// (`node_range_inline`; GCC 12 leaves the scalar `far_range` scalar).
+  template <class RN>
+  EBGEOM_TARGET_AVX2 EBGEOM_WINDING_KERNEL static void
+  far_range4_avx2(detail::RangeSum* fv, const detail::RangeBox& x, const WindingNode<T, K>& c,
+                  const RN& rc, const double* dmin2s, const std::uint8_t* whole,
+                  unsigned need) noexcept {
+    using V = __m256d;
+    const V one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+    const V i4p = _mm256_set1_pd(0.07957747154594767);
+    const V dmin = _mm256_sqrt_pd(_mm256_loadu_pd(dmin2s)) * (1 - 1e-12);
+    const V dfar = detail::load4_pd(rc.dfar);
+    const V dlow = _mm256_blendv_pd(dfar, dmin, _mm256_cmp_pd(dmin, dfar, _CMP_GT_OQ));
+    const V okm = _mm256_cmp_pd(dlow, zero, _CMP_GT_OQ),
+            pos = _mm256_cmp_pd(dmin, zero, _CMP_GT_OQ);
+    const V nrm = detail::load4_pd(rc.nrm), fro = detail::load4_pd(rc.fro);
+    const V atr = detail::abs_lt_pd(detail::load4_pd(c.m[0]) + detail::load4_pd(c.m[4]) +
+                                    detail::load4_pd(c.m[8]));
+    const V il = one / _mm256_blendv_pd(one, dlow, okm), il2 = il * il, il3 = il2 * il;
+    const V mag = (nrm * il2 + (atr + 9.0 * fro) * il3) * i4p;
+    V v, gx, gy, gz;
+    fields4_avx2(c, x.c, pos, v, gx, gy, gz);
+    const V id = one / _mm256_blendv_pd(one, dmin, pos), id3 = id * id * id, id4 = id3 * id;
+    const V g1 = (2.0 * nrm * id3 + 10.4 * fro * id4) * i4p;
+    const V hs = (6.0 * nrm * id4 + 41.6 * fro * (id4 * id)) * i4p;
+    // The interval where some points only take the child as far: the cap, and where dmin > 0
+    // the model's interval (`RangeSum::interval`) within it.
+    const V cap = (nrm * il2 + (atr + 3.0 * fro) * il3) * i4p * (1 + 1e-12), ncap = -cap;
+    const V lin = detail::abs_lt_pd(gx) * x.e.x + detail::abs_lt_pd(gy) * x.e.y +
+                  detail::abs_lt_pd(gz) * x.e.z;
+    const V w1 = x.rho * g1, w2 = lin + 0.5 * x.rho * x.rho * hs;
+    const V w = _mm256_blendv_pd(w1, w2, _mm256_cmp_pd(w2, w1, _CMP_LT_OQ)) * (1 + 1e-9) +
+                1e-12 * (detail::abs_lt_pd(v) + x.rho * g1);
+    const V mlo = v + 0.0 - w, mhi = v + 0.0 + w;
+    const V lo = _mm256_blendv_pd(
+        ncap, _mm256_blendv_pd(mlo, ncap, _mm256_cmp_pd(ncap, mlo, _CMP_GT_OQ)), pos);
+    const V hi =
+        _mm256_blendv_pd(cap, _mm256_blendv_pd(mhi, cap, _mm256_cmp_pd(cap, mhi, _CMP_LT_OQ)), pos);
+    alignas(32) double a_mag[4], a_v[4], a_gx[4], a_gy[4], a_gz[4], a_g1[4], a_hs[4], a_lo[4],
+        a_hi[4];
+    _mm256_store_pd(a_mag, mag), _mm256_store_pd(a_v, v), _mm256_store_pd(a_gx, gx);
+    _mm256_store_pd(a_gy, gy), _mm256_store_pd(a_gz, gz), _mm256_store_pd(a_g1, g1);
+    _mm256_store_pd(a_hs, hs), _mm256_store_pd(a_lo, lo), _mm256_store_pd(a_hi, hi);
+    const int okb = _mm256_movemask_pd(okm), posb = _mm256_movemask_pd(pos);
+    for (int k = 0; k < 4; ++k) {
+      if (!((need >> k) & 1u)) continue;
+      detail::RangeSum& f = fv[k];
+      f = detail::RangeSum{};
+      if (!((okb >> k) & 1)) { // `far_range` claims nothing where dlow is not positive
+        f.ok = false;
+        continue;
+      }
+      f.mag = a_mag[k];
+      f.terms = 2;
+      if (((posb >> k) & 1) && whole[k]) {
+        f.value = a_v[k], f.grad = {a_gx[k], a_gy[k], a_gz[k]}, f.grad1 = a_g1[k];
+        f.hess = a_hs[k];
+      } else {
+        f.ilo = a_lo[k], f.ihi = a_hi[k];
+      }
+    }
   }
 #endif
 
@@ -1242,11 +1325,26 @@ template <class T, int K = 4> class FastWindingNumber {
     bvh::FixedStack<std::uint32_t, bvh::WideBvh<T, K>::stack_capacity> todo;
     todo.push(bvh_.root.index);
     bool ok = true;
+    return walk_inline<I>(x, fr, todo, ok) && finished(fr, ok);
+  }
+
+  /// Walks the subtrees on `todo` into `fr` (`frontier_node_inline` per node, counted in
+  /// `fr.nodes`) until `todo` is empty; false when `fr` is full.
+  template <Isa I>
+  EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE bool
+  walk_inline(const detail::RangeBox& x, Frontier& fr,
+              bvh::FixedStack<std::uint32_t, bvh::WideBvh<T, K>::stack_capacity>& todo,
+              bool& ok) const noexcept {
     while (!todo.empty()) {
       const std::uint32_t ni = todo.pop();
       ++fr.nodes;
       if (!frontier_node_inline<I>(x, fr, ni, ~0u, todo, ok)) return false;
     }
+    return true;
+  }
+
+  /// A walk's result: `ok` (every model's bound holds) and every sum of `fr` finite.
+  static bool finished(const Frontier& fr, bool ok) noexcept {
     const auto finite = [](double v) { return v - v == 0; };
     return ok && finite(fr.value) && finite(fr.hess) && finite(fr.mag) && finite(fr.slack) &&
            finite(fr.grad.x) && finite(fr.grad.y) && finite(fr.grad.z);
@@ -1272,15 +1370,9 @@ template <class T, int K = 4> class FastWindingNumber {
       if (!frontier_node_inline<I>(x2, fr, ni, km, todo, ok)) return false;
       // Walked before the next node's items, so that the stack holds at most what a walk from
       // the root would (at most K children of one node, then depth-first below them).
-      while (!todo.empty()) {
-        const std::uint32_t nj = todo.pop();
-        ++fr.nodes;
-        if (!frontier_node_inline<I>(x2, fr, nj, ~0u, todo, ok)) return false;
-      }
+      if (!walk_inline<I>(x2, fr, todo, ok)) return false;
     }
-    const auto finite = [](double v) { return v - v == 0; };
-    return ok && finite(fr.value) && finite(fr.hess) && finite(fr.mag) && finite(fr.slack) &&
-           finite(fr.grad.x) && finite(fr.grad.y) && finite(fr.grad.z);
+    return finished(fr, ok);
   }
 
   /// A packet's part of `bound_batch` for the points of `fr`'s box: the near sums of `fr`'s
@@ -1918,7 +2010,8 @@ template <class T, int K = 4> class FastWindingNumber {
   /// Hessian bound 6 |N| / r⁴ + 24 √3 |M| / r⁵ (|∂ᵏ(1/r)| <= k! / r^(k+1), `add_triangle_range`;
   /// a contraction with M is at most its nuclear norm <= √3 |M|, the Frobenius norm); for some
   /// points only (`whole` false) an interval capped by |term| <= |N| / r² + (|tr M| + 3 |M|) / r³.
-  /// Plain scalar arithmetic, so that it inlines into the kernels (`node_range_inline`).
+  /// Plain scalar arithmetic, so that it inlines into the kernels (`node_range_inline`; its AVX2
+  /// and AVX-512 kernels take `far_range4_avx2`, the same arithmetic 4 children at a time).
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE void
   far_range(detail::RangeSum& fv, const detail::RangeBox& x, const WindingNode<T, K>& c,
             const RangeNode& rc, int k, bool whole, double dmin_raw) const noexcept {
@@ -2014,6 +2107,20 @@ template <class T, int K = 4> class FastWindingNumber {
       s.grad1 += o.grad1, s.hess += o.hess, s.ilo += o.ilo, s.ihi += o.ihi;
       s.mag += o.mag, s.cond += o.cond, s.terms += o.terms, s.ok = s.ok && o.ok;
     };
+#if EBGEOM_ISA_DISPATCH
+    if constexpr (K == 4 && (I == Isa::avx2 || I == Isa::avx512)) {
+      // The far fields' terms of the 4 children at once (`far_range4_avx2`).
+      unsigned need = 0;
+      for (int k = 0; k < K; ++k) need |= unsigned(!node.child[k].is_empty() && !all_near[k]) << k;
+      detail::RangeSum fv[K];
+      if (need != 0) far_range4_avx2(fv, x, c, range_nodes_[ni], dmin2s, all_far, need);
+      for (int k = 0; k < K && s.ok; ++k) {
+        if (node.child[k].is_empty()) continue;
+        add(child_range_inline<I>(ni, k, x, all_far[k], all_near[k], dmin2s[k], &fv[k]));
+      }
+      return s;
+    }
+#endif
     for (int k = 0; k < K && s.ok; ++k) {
       if (node.child[k].is_empty()) continue;
       add(child_range_inline<I>(ni, k, x, all_far[k], all_near[k], dmin2s[k]));
@@ -2024,15 +2131,21 @@ template <class T, int K = 4> class FastWindingNumber {
   /// The term of child `k` of node `ni` over the box (see `node_range_inline`), from the tests of
   /// its cluster's distances to the box (`all_far`: far for every point, `all_near`: near for
   /// every point; `dmin2` the squared distance from the box to its centre): its far field's model
-  /// (`far_range`), its leaf's or subtree's interval, or the hull of both.
+  /// (`far_range`, or `*far` where given: its result), its leaf's or subtree's interval, or the
+  /// hull of both.
   template <Isa I>
   EBGEOM_WINDING_KERNEL EBGEOM_FORCE_INLINE detail::RangeSum
   child_range_inline(std::uint32_t ni, int k, const detail::RangeBox& x, bool all_far,
-                     bool all_near, double dmin2) const noexcept {
+                     bool all_near, double dmin2,
+                     const detail::RangeSum* far = nullptr) const noexcept {
     const bvh::ChildRef r = bvh_.nodes[ni].child[k];
     detail::RangeSum fv, nv;
-    if (!all_near)
-      far_range(fv, x, nodes_[ni], range_nodes_[ni], k, all_far, detail::winding_sqrt(dmin2));
+    if (!all_near) {
+      if (far != nullptr)
+        fv = *far;
+      else
+        far_range(fv, x, nodes_[ni], range_nodes_[ni], k, all_far, detail::winding_sqrt(dmin2));
+    }
     if (!all_far) {
       if (r.is_leaf())
         leaf_range(nv, x, r.index, r.count);

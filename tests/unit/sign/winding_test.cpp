@@ -254,6 +254,64 @@ TYPED_TEST(WindingTest, PacketsAreThePerPointValuesBitForBit) {
   EXPECT_EQ(untouched, T(7));
 }
 
+/// The end points of `range_over`'s intervals, alone and from a scope, for boxes of every size
+/// (from 1/4096 to 1/2 of the mesh's size) around and across the mesh, in order; each interval
+/// is checked to hold the value at its box's centre.
+template <class T, int K>
+std::vector<double> range_ends(const FastWindingNumber<T, K>& fw, const TriangleMesh<T>& m) {
+  std::vector<double> ends;
+  std::mt19937_64 rng(5);
+  const T size = max_component(m.bounds().extent());
+  std::uniform_real_distribution<double> log_half(-12, -1);
+  for (const Vec3<T>& c : test::random_points(m.bounds().grown(size), 300, 21)) {
+    const T h = T(std::exp2(log_half(rng))) * size;
+    const Vec3<T> d{h, h, h};
+    const Aabb<T> box{c - d, c + d};
+    const WindingRange r = fw.range_over(box);
+    EXPECT_TRUE(r.lo <= double(fw(c)) && double(fw(c)) <= r.hi) << c << " half size " << h;
+    typename FastWindingNumber<T, K>::RangeScope scope;
+    fw.scope(box.grown(h), scope);
+    const WindingRange s = fw.range_over(scope, Aabb<T>{c, c + d});
+    EXPECT_TRUE(s.lo <= double(fw(c)) && double(fw(c)) <= s.hi) << c << " half size " << h;
+    for (const double v : {r.lo, r.hi, s.lo, s.hi}) ends.push_back(v);
+  }
+  return ends;
+}
+
+TYPED_TEST(WindingTest, BoxBoundsAreTheSameOnEveryInstructionSet) {
+  // The box bounds' kernels (`range_over`, per instruction set, with 4 children at a time in
+  // vector registers for K = 4 with AVX2 and AVX-512) must give the same intervals bit for bit.
+  using T = TypeParam;
+  for (const auto& [name, soup] : packet_meshes<T>()) {
+    SCOPED_TRACE(name);
+    const TriangleMesh<T> m = make_triangle_mesh(soup).value();
+    const auto f4 = FastWindingNumber<T, 4>::make(m).value();
+    const auto f8 = FastWindingNumber<T, 8>::make(m).value();
+    std::vector<double> ref4, ref8;
+    for_each_isa([&] {
+      const std::vector<double> e4 = range_ends(f4, m), e8 = range_ends(f8, m);
+      if (ref4.empty()) {
+        ref4 = e4, ref8 = e8;
+        return;
+      }
+      ASSERT_EQ(e4.size(), ref4.size());
+      for (std::size_t i = 0; i < e4.size(); ++i)
+        ASSERT_TRUE(same_bits(e4[i], ref4[i])) << i << ": " << e4[i] << " vs " << ref4[i];
+      for (std::size_t i = 0; i < e8.size(); ++i)
+        ASSERT_TRUE(same_bits(e8[i], ref8[i])) << i << ": " << e8[i] << " vs " << ref8[i];
+    });
+    // Not vacuous: boxes of both kinds, decided (one side of 1/2) and not.
+    std::size_t decided = 0, finite = 0;
+    for (std::size_t i = 0; i < ref4.size(); i += 2) {
+      decided += ref4[i] > 0.5 || ref4[i + 1] < 0.5;
+      finite += std::isfinite(ref4[i]) && std::isfinite(ref4[i + 1]);
+    }
+    EXPECT_GT(decided, ref4.size() / 8);
+    EXPECT_LT(decided, ref4.size() / 2);
+    EXPECT_LT(decided, finite);
+  }
+}
+
 // ---- The sign-only fast path: bound_packet and above_half_packet -------------------------------
 
 TEST(WindingBoundedAtan2, WithinItsBoundOfStdAtan2) {
